@@ -1,0 +1,23 @@
+// The parts of SPEC.md that are the catalogue itself, generated so the document cannot drift:
+// the message and enum tables, the stream byte-rate table and the canonical schema text.
+// SPEC.md holds each between "<!-- BEGIN GENERATED name -->" and "<!-- END GENERATED name -->";
+// a test fails when they differ from what this build generates.
+#pragma once
+
+#include <string>
+
+namespace palp::proto {
+
+std::string spec_message_tables();   ///< "messages"
+std::string spec_enum_tables();      ///< "enums"
+std::string spec_stream_rates();     ///< "stream-rates"
+std::string canonical_schema_text(); ///< "schema"
+
+/// The generated block `name` (one of the above), or "" for an unknown name.
+std::string spec_block(const std::string& name);
+
+/// Replaces every generated block in a SPEC.md text with this build's; returns the new text.
+/// Sets `error` (and returns "") when a block's markers are missing or unbalanced.
+std::string refresh_spec(const std::string& spec, std::string& error);
+
+}  // namespace palp::proto

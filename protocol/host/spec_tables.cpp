@@ -1,0 +1,172 @@
+#include "palp/protocol/spec_tables.hpp"
+
+#include <cstdio>
+
+#include "palp/protocol/codec.hpp"
+#include "palp/protocol/schema.hpp"
+#include "palp/protocol/stream.hpp"
+
+namespace palp::proto {
+
+namespace {
+
+std::string type_text(const FieldInfo& f) {
+  const std::string t = f.type;
+  switch (f.kind) {
+    case 'A': return t + "[" + std::to_string(f.count) + "]";
+    case 'V': return "u16 count + up to " + std::to_string(f.count) + " × " + t;
+    case 'T': return "text[" + std::to_string(f.count) + "]";
+    case 'E': return t;
+    default: return t;
+  }
+}
+
+std::string range_text(const FieldInfo& f) {
+  const std::string lo = f.lo_text, hi = f.hi_text;
+  if (lo == "NOLIM" && hi == "NOLIM") return "";
+  return (lo == "NOLIM" ? std::string("…") : lo) + " … " + (hi == "NOLIM" ? std::string("…") : hi);
+}
+
+std::string default_text(const FieldInfo& f) {
+  std::string d = f.default_text;
+  const std::size_t colons = d.rfind("::");
+  if (colons != std::string::npos) d = d.substr(colons + 2);
+  if (f.kind == 'V') return "empty";
+  if (f.kind == 'T') return "\"\"";
+  return d;
+}
+
+template <class M>
+std::size_t min_size(const M&) { return min_payload_size<M>(); }
+template <class M>
+std::size_t max_size(const M&) { return max_payload_size<M>(); }
+
+}  // namespace
+
+std::string spec_message_tables() {
+  std::string out;
+  for_each_message_type([&](auto m) {
+    using M = decltype(m);
+    char head[200];
+    std::snprintf(head, sizeof head, "#### 0x%02X %s (%s, since %u.%u%s%s)\n\n",
+                  static_cast<unsigned>(M::kId), M::kName,
+                  M::kDirection == Direction::H2D ? "host → device" : "device → host",
+                  kProtocolMajor, M::kSince, M::kReply == MessageId::None ? "" : ", reply ",
+                  M::kReply == MessageId::None ? "" : message_name(M::kReply));
+    out += head;
+    out += M::kDoc;
+    out += " Payload " + std::to_string(min_size(m)) + "–" + std::to_string(max_size(m)) +
+           " bytes.\n\n";
+    if (M::kFields.size() == 0) {
+      out += "No fields.\n\n";
+      return;
+    }
+    out += "| # | field | type | unit | range | default | since | meaning |\n";
+    out += "|---|---|---|---|---|---|---|---|\n";
+    std::size_t index = 0;
+    for (const FieldInfo& f : M::kFields) {
+      out += "| " + std::to_string(index++) + " | `" + f.name + "` | " + type_text(f) + " | " +
+             f.unit + " | " + range_text(f) + " | " + default_text(f) + " | " +
+             std::to_string(kProtocolMajor) + "." + std::to_string(f.since) + " | " + f.doc +
+             " |\n";
+    }
+    out += "\n";
+  });
+  return out;
+}
+
+std::string spec_enum_tables() {
+  std::string out;
+  for_each_enum([&](auto info) {
+    using I = decltype(info);
+    out += std::string("#### ") + I::name + " (" + I::type + ")\n\n" + I::doc + "\n\n";
+    out += "| value | name | meaning |\n|---|---|---|\n";
+    for (const auto& v : I::values)
+      out += "| " + std::to_string(v.value) + " | `" + v.name + "` | " + v.doc + " |\n";
+    out += "\n";
+  });
+  return out;
+}
+
+std::string spec_stream_rates() {
+  struct Row {
+    const char* channels;
+    u16 mask;
+  };
+  const Row masks[] = {{"all 11", kAllChannels},
+                       {"i_meas, encoder", 0x0006},
+                       {"i_cmd, i_meas, encoder, status", 0x0207},
+                       {"i_meas, encoder, p1–p6", 0x01FE}};
+  const double rates[] = {1000, 2000, 5000, 10000};
+  std::string out =
+      "| channels | bytes/sample | rate (Hz) | samples/batch | batches/s | wire bytes/s |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const Row& r : masks) {
+    for (double rate : rates) {
+      // the batch size the SDK chooses by default: 4 ms of samples, at most one full batch
+      std::size_t n = static_cast<std::size_t>(rate * 0.004);
+      if (n < 1) n = 1;
+      if (n > max_batch_samples(r.mask)) n = max_batch_samples(r.mask);
+      char row[200];
+      std::snprintf(row, sizeof row, "| %s | %zu | %.0f | %zu | %.1f | %u |\n", r.channels,
+                    bytes_per_sample(r.mask), rate, n, rate / static_cast<double>(n),
+                    stream_wire_bytes_per_s(r.mask, rate, n));
+      out += row;
+    }
+  }
+  return out;
+}
+
+std::string canonical_schema_text() {
+  struct StringSink {
+    std::string s;
+    void put(char c) { s += c; }
+  } sink;
+  write_canonical_schema(sink);
+  return sink.s;
+}
+
+std::string spec_block(const std::string& name) {
+  if (name == "messages") return spec_message_tables();
+  if (name == "enums") return spec_enum_tables();
+  if (name == "stream-rates") return spec_stream_rates();
+  if (name == "schema") {
+    char hash[64];
+    std::snprintf(hash, sizeof hash, "Schema hash of this catalogue: `0x%08x`.\n\n", kSchemaHash);
+    return hash + std::string("```text\n") + canonical_schema_text() + "```\n";
+  }
+  return "";
+}
+
+std::string refresh_spec(const std::string& spec, std::string& error) {
+  std::string out;
+  std::size_t pos = 0;
+  const std::string begin_tag = "<!-- BEGIN GENERATED ";
+  while (true) {
+    const std::size_t b = spec.find(begin_tag, pos);
+    if (b == std::string::npos) break;
+    const std::size_t name_end = spec.find(" -->", b);
+    if (name_end == std::string::npos) {
+      error = "unterminated BEGIN GENERATED marker";
+      return "";
+    }
+    const std::string name = spec.substr(b + begin_tag.size(), name_end - b - begin_tag.size());
+    const std::string end_tag = "<!-- END GENERATED " + name + " -->";
+    const std::size_t e = spec.find(end_tag, name_end);
+    if (e == std::string::npos) {
+      error = "no '" + end_tag + "' after its BEGIN marker";
+      return "";
+    }
+    const std::string block = spec_block(name);
+    if (block.empty()) {
+      error = "unknown generated block '" + name + "'";
+      return "";
+    }
+    out += spec.substr(pos, name_end + 4 - pos) + "\n" + block;
+    pos = e;
+  }
+  out += spec.substr(pos);
+  return out;
+}
+
+}  // namespace palp::proto

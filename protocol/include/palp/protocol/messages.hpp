@@ -1,0 +1,239 @@
+// The protocol's enums and message structs, expanded from catalogue.hpp.
+//
+// Every message is a plain struct with its fields as members (initialised to the catalogue's
+// defaults) and a compile-time description: kId, kName, kDirection, kSince, kReply, kFields,
+// and visit(), which hands each field with its FieldInfo to a visitor. The codec, the schema
+// hash, the range checks and the text printer are all written once over visit().
+//
+// Freestanding: no heap, no exceptions, no RTTI.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "palp/protocol/catalogue.hpp"
+#include "palp/protocol/wire_types.hpp"
+
+namespace palp::proto {
+
+inline constexpr u8 kProtocolMajor = PALP_PROTOCOL_MAJOR;
+inline constexpr u8 kProtocolMinor = PALP_PROTOCOL_MINOR;
+
+/// "No limit" marker of the catalogue's lo/hi columns.
+struct NoLimit {};
+inline constexpr NoLimit NOLIM{};
+
+// ---- enums ---------------------------------------------------------------------------------
+#define PALP_X_ENUM_VALUE(name, value, doc) name = value,
+#define PALP_X_ENUM_DECL(Name, type, doc) \
+  enum class Name : type { PALP_ENUM_##Name(PALP_X_ENUM_VALUE) };
+PALP_ENUMS(PALP_X_ENUM_DECL)
+#undef PALP_X_ENUM_DECL
+#undef PALP_X_ENUM_VALUE
+
+struct EnumValueInfo {
+  const char* name;
+  u32 value;
+  const char* doc;
+};
+
+template <class E>
+struct EnumInfo;  // name, type, doc, values: specialised for every catalogue enum
+
+#define PALP_X_ENUM_VALUE_INFO(name, value, doc) EnumValueInfo{#name, value, doc},
+#define PALP_X_ENUM_INFO(Name, utype, edoc)                                      \
+  template <>                                                                    \
+  struct EnumInfo<Name> {                                                        \
+    static constexpr const char* name = #Name;                                   \
+    static constexpr const char* type = #utype;                                  \
+    static constexpr const char* doc = edoc;                                     \
+    static constexpr EnumValueInfo values[] = {PALP_ENUM_##Name(PALP_X_ENUM_VALUE_INFO)}; \
+  };
+PALP_ENUMS(PALP_X_ENUM_INFO)
+#undef PALP_X_ENUM_INFO
+#undef PALP_X_ENUM_VALUE_INFO
+
+/// The catalogue name of an enum value, or nullptr for a value this build does not know
+/// (a newer peer may send values added in a later minor version).
+template <class E>
+constexpr const char* enum_name(E value) {
+  for (const auto& v : EnumInfo<E>::values)
+    if (v.value == static_cast<u32>(value)) return v.name;
+  return nullptr;
+}
+
+/// Calls f(EnumInfo<E>{}) for every catalogue enum, in catalogue order.
+template <class F>
+constexpr void for_each_enum(F&& f) {
+#define PALP_X_ENUM_EACH(Name, type, doc) f(EnumInfo<Name>{});
+  PALP_ENUMS(PALP_X_ENUM_EACH)
+#undef PALP_X_ENUM_EACH
+}
+
+// ---- message ids -----------------------------------------------------------------------------
+enum class Direction : u8 { H2D, D2H };
+
+enum class MessageId : u8 {
+  None = 0,
+#define PALP_X_ID(Name, id, dir, since, reply, doc) Name = id,
+  PALP_MESSAGES(PALP_X_ID)
+#undef PALP_X_ID
+};
+
+/// Ids 0x01-0x0F are frozen across major versions (SPEC.md §6.1).
+constexpr bool is_frozen_id(u8 id) { return id >= 0x01 && id <= 0x0F; }
+
+// ---- field descriptions ----------------------------------------------------------------------
+struct FieldInfo {
+  const char* name;
+  char kind;         // 'S' scalar, 'E' enum, 'A' fixed array, 'V' bounded array, 'T' text
+  const char* type;  // element type as spelled in the catalogue
+  u16 count;         // elements (A), capacity (V), bytes (T), 1 otherwise
+  u8 since;          // minor version that added the field
+  const char* default_text;
+  const char* lo_text;
+  const char* hi_text;
+  const char* unit;
+  const char* doc;
+};
+
+namespace detail {
+template <class T, std::size_t N, class V>
+constexpr Arr<T, N> filled(V value) {
+  Arr<T, N> a{};
+  for (auto& x : a) x = static_cast<T>(value);
+  return a;
+}
+}  // namespace detail
+
+#define PALP_MEMBER_TYPE_S(type, n) type
+#define PALP_MEMBER_TYPE_E(type, n) type
+#define PALP_MEMBER_TYPE_A(type, n) ::palp::proto::Arr<type, n>
+#define PALP_MEMBER_TYPE_V(type, n) ::palp::proto::Vec<type, n>
+#define PALP_MEMBER_TYPE_T(type, n) ::palp::proto::Str<n>
+#define PALP_MEMBER_INIT_S(type, n, def) static_cast<type>(def)
+#define PALP_MEMBER_INIT_E(type, n, def) def
+#define PALP_MEMBER_INIT_A(type, n, def) ::palp::proto::detail::filled<type, n>(def)
+#define PALP_MEMBER_INIT_V(type, n, def) \
+  {}
+#define PALP_MEMBER_INIT_T(type, n, def) \
+  {}
+
+#define PALP_X_MEMBER(kind, type, n, name, since, def, lo, hi, unit, doc) \
+  PALP_MEMBER_TYPE_##kind(type, n) name = PALP_MEMBER_INIT_##kind(type, n, def);
+#define PALP_X_FIELD_INFO(kind, type, n, name, since, def, lo, hi, unit, doc) \
+  FieldInfo{#name, (#kind)[0], #type, n, since, #def, #lo, #hi, unit, doc},
+#define PALP_X_VISIT(kind, type, n, name, since, def, lo, hi, unit, doc) v(kFields[i++], name);
+#define PALP_X_RANGE(kind, type, n, name, since, def, lo, hi, unit, doc) \
+  if (!::palp::proto::detail::in_range(name, lo, hi)) return static_cast<int>(i);   \
+  ++i;
+
+namespace detail {
+constexpr bool below(double v, double lo) { return !(v >= lo); }  // NaN is out of range
+template <class T, class L, class H>
+constexpr bool scalar_in_range(const T& value, const L& lo, const H& hi) {
+  if constexpr (std::is_enum_v<T>) {
+    return true;  // unknown enum values are judged by the command handler
+  } else {
+    const double v = static_cast<double>(value);
+    if (v != v) return false;
+    if constexpr (!std::is_same_v<L, NoLimit>)
+      if (below(v, static_cast<double>(lo))) return false;
+    if constexpr (!std::is_same_v<H, NoLimit>)
+      if (!(v <= static_cast<double>(hi))) return false;
+    return true;
+  }
+}
+template <class T, class L, class H>
+constexpr bool in_range(const T& value, const L& lo, const H& hi) {
+  if constexpr (is_wire_scalar_v<T>) {
+    return scalar_in_range(value, lo, hi);
+  } else if constexpr (requires { value.bytes; }) {
+    return true;  // text
+  } else if constexpr (requires { value.items; }) {
+    for (u16 k = 0; k < value.size; ++k)
+      if (!scalar_in_range(value.items[k], lo, hi)) return false;
+    return true;
+  } else {
+    for (const auto& x : value)
+      if (!scalar_in_range(x, lo, hi)) return false;
+    return true;
+  }
+}
+}  // namespace detail
+
+// ---- message structs -------------------------------------------------------------------------
+#define PALP_X_STRUCT(Name, id, dir, since, reply, doc)                                     \
+  struct Name {                                                                             \
+    static constexpr MessageId kId = MessageId::Name;                                       \
+    static constexpr const char* kName = #Name;                                             \
+    static constexpr Direction kDirection = Direction::dir;                                 \
+    static constexpr u8 kSince = since;                                                     \
+    static constexpr MessageId kReply = MessageId::reply;                                   \
+    static constexpr const char* kDoc = doc;                                                \
+    static constexpr std::array<FieldInfo, 0 PALP_FIELDS_##Name(PALP_X_COUNT)> kFields = {  \
+        {PALP_FIELDS_##Name(PALP_X_FIELD_INFO)}};                                           \
+    PALP_FIELDS_##Name(PALP_X_MEMBER)                                                       \
+                                                                                            \
+    template <class V>                                                                      \
+    constexpr void visit([[maybe_unused]] V&& v) {                                          \
+      [[maybe_unused]] std::size_t i = 0;                                                   \
+      PALP_FIELDS_##Name(PALP_X_VISIT)                                                      \
+    }                                                                                       \
+    template <class V>                                                                      \
+    constexpr void visit([[maybe_unused]] V&& v) const {                                    \
+      [[maybe_unused]] std::size_t i = 0;                                                   \
+      PALP_FIELDS_##Name(PALP_X_VISIT)                                                      \
+    }                                                                                       \
+    /** Index of the first field outside its catalogue range, or -1 when all are valid. */ \
+    constexpr int first_out_of_range() const {                                              \
+      [[maybe_unused]] std::size_t i = 0;                                                   \
+      PALP_FIELDS_##Name(PALP_X_RANGE) return -1;                                           \
+    }                                                                                       \
+    constexpr bool operator==(const Name&) const = default;                                 \
+  };
+#define PALP_X_COUNT(...) +1
+PALP_MESSAGES(PALP_X_STRUCT)
+#undef PALP_X_COUNT
+#undef PALP_X_STRUCT
+
+// ---- the catalogue as data -------------------------------------------------------------------
+struct MessageInfo {
+  MessageId id;
+  const char* name;
+  Direction direction;
+  u8 since;
+  MessageId reply;
+  const char* doc;
+  const FieldInfo* fields;
+  std::size_t field_count;
+};
+
+inline constexpr MessageInfo kMessages[] = {
+#define PALP_X_INFO(Name, id, dir, since, reply, doc)                                      \
+  MessageInfo{MessageId::Name, #Name, Direction::dir, since, MessageId::reply, doc, \
+              Name::kFields.data(), Name::kFields.size()},
+    PALP_MESSAGES(PALP_X_INFO)
+#undef PALP_X_INFO
+};
+
+/// The catalogue entry of a message id, or nullptr when this build does not know it.
+constexpr const MessageInfo* find_message(u8 id) {
+  for (const auto& m : kMessages)
+    if (static_cast<u8>(m.id) == id) return &m;
+  return nullptr;
+}
+constexpr const char* message_name(MessageId id) {
+  const MessageInfo* m = find_message(static_cast<u8>(id));
+  return m != nullptr ? m->name : nullptr;
+}
+
+/// Calls f(Name{}) with a default-constructed value of every message type, in catalogue order.
+template <class F>
+constexpr void for_each_message_type(F&& f) {
+#define PALP_X_EACH(Name, id, dir, since, reply, doc) f(Name{});
+  PALP_MESSAGES(PALP_X_EACH)
+#undef PALP_X_EACH
+}
+
+}  // namespace palp::proto

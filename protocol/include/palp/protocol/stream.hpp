@@ -1,0 +1,68 @@
+// Stream samples (SPEC.md §9): the channels of a sample, their scaling, and the byte rate of a
+// stream configuration. A SampleBatch's data holds sample_count samples back to back; each
+// sample holds the channels whose bits are set, in bit order, little-endian, no padding.
+#pragma once
+
+#include <cstddef>
+
+#include "palp/protocol/cobs.hpp"
+#include "palp/protocol/frame.hpp"
+#include "palp/protocol/messages.hpp"
+
+namespace palp::proto {
+
+inline constexpr double kCurrentLsb_A = 0.0002;   ///< i_cmd, i_meas: i16
+inline constexpr double kPressureLsb_Pa = 0.05;   ///< p1..p6: i16
+inline constexpr double kVoltageLsb_V = 0.001;    ///< v_cmd: i16
+inline constexpr u16 kAllChannels = 0x07FF;
+inline constexpr std::size_t kMaxBatchData = 960;  ///< SampleBatch.data capacity
+
+/// One sample as it is on the wire: scaled integers. Absent channels are left zero.
+struct RawSample {
+  i16 i_cmd = 0;
+  i16 i_meas = 0;
+  i32 encoder = 0;
+  Arr<i16, 6> pressure{};
+  u16 status = 0;
+  i16 v_cmd = 0;
+  constexpr bool operator==(const RawSample&) const = default;
+};
+
+/// Size in bytes of one sample carrying the channels in mask (bits above Channel::v_cmd ignored).
+constexpr std::size_t bytes_per_sample(u16 mask) {
+  std::size_t n = 0;
+  for (u8 bit = 0; bit <= static_cast<u8>(Channel::v_cmd); ++bit) {
+    if ((mask & (1u << bit)) == 0) continue;
+    n += (bit == static_cast<u8>(Channel::encoder)) ? 4 : 2;
+  }
+  return n;
+}
+
+/// Appends one sample's selected channels to w.
+void pack_sample(Writer& w, const RawSample& s, u16 mask);
+/// Reads one sample's selected channels from r; false when r runs out.
+bool unpack_sample(Reader& r, RawSample& s, u16 mask);
+
+/// The most samples of this channel mask that fit one SampleBatch.
+constexpr std::size_t max_batch_samples(u16 mask) {
+  const std::size_t b = bytes_per_sample(mask);
+  return b == 0 ? 0 : kMaxBatchData / b;
+}
+
+/// Bytes on the wire for one SampleBatch frame of n samples: header, payload, CRC, the worst-case
+/// COBS overhead and the delimiter.
+constexpr std::size_t batch_wire_bytes(u16 mask, std::size_t n) {
+  const std::size_t payload = 4 + 8 + 4 + 2 + 2 + 2 + n * bytes_per_sample(mask);
+  const std::size_t frame = kHeaderSize + payload + kCrcSize;
+  return cobs_max_encoded(frame) + 1;
+}
+
+/// Wire bytes per second of a stream of rate_Hz samples per second in batches of n (rounded up).
+constexpr u32 stream_wire_bytes_per_s(u16 mask, double rate_Hz, std::size_t n) {
+  if (n == 0) return 0;
+  const double v = rate_Hz / static_cast<double>(n) * static_cast<double>(batch_wire_bytes(mask, n));
+  const u32 whole = static_cast<u32>(v);
+  return static_cast<double>(whole) < v ? whole + 1 : whole;
+}
+
+}  // namespace palp::proto

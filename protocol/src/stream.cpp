@@ -1,0 +1,33 @@
+#include "palp/protocol/stream.hpp"
+
+namespace palp::proto {
+
+namespace {
+constexpr bool has(u16 mask, Channel c) { return (mask & (1u << static_cast<u8>(c))) != 0; }
+}  // namespace
+
+void pack_sample(Writer& w, const RawSample& s, u16 mask) {
+  if (has(mask, Channel::i_cmd)) w.scalar(s.i_cmd);
+  if (has(mask, Channel::i_meas)) w.scalar(s.i_meas);
+  if (has(mask, Channel::encoder)) w.scalar(s.encoder);
+  for (u8 k = 0; k < 6; ++k)
+    if (has(mask, static_cast<Channel>(static_cast<u8>(Channel::p1) + k))) w.scalar(s.pressure[k]);
+  if (has(mask, Channel::status)) w.scalar(s.status);
+  if (has(mask, Channel::v_cmd)) w.scalar(s.v_cmd);
+}
+
+bool unpack_sample(Reader& r, RawSample& s, u16 mask) {
+  s = RawSample{};
+  bool ok = true;
+  if (has(mask, Channel::i_cmd)) ok = ok && r.scalar(s.i_cmd);
+  if (has(mask, Channel::i_meas)) ok = ok && r.scalar(s.i_meas);
+  if (has(mask, Channel::encoder)) ok = ok && r.scalar(s.encoder);
+  for (u8 k = 0; k < 6; ++k)
+    if (has(mask, static_cast<Channel>(static_cast<u8>(Channel::p1) + k)))
+      ok = ok && r.scalar(s.pressure[k]);
+  if (has(mask, Channel::status)) ok = ok && r.scalar(s.status);
+  if (has(mask, Channel::v_cmd)) ok = ok && r.scalar(s.v_cmd);
+  return ok;
+}
+
+}  // namespace palp::proto
