@@ -17,6 +17,7 @@ std::size_t cobs_encode(const u8* in, std::size_t n, u8* out, std::size_t capaci
     out[o++] = in[k];
     if (++code == 0xFF) {
       out[code_pos] = code;
+      if (k + 1 == n) return o;  // a full block ends the input: no code byte follows
       code_pos = o++;
       code = 1;
     }
