@@ -29,6 +29,8 @@ commands:
   spec --write FILE       rewrite FILE's generated blocks (message/enum tables, stream rates,
                           schema) in place
   vectors DIR             write DIR/messages.txt and DIR/malformed.txt (golden vectors)
+  seeds DIR OUT           write the wire bytes of every vector in DIR as one file each in
+                          OUT (fuzzing seeds), plus all message vectors as one stream
   decode [HEX ...]        decode wire bytes (hex, from the arguments or standard input) and
                           print every message or reject reason
   demo                    walk through a handshake, programs, a sample batch and bad input
@@ -103,6 +105,42 @@ int cmd_vectors(int argc, char** argv) {
     return 3;
   }
   std::printf("wrote %s/messages.txt and %s/malformed.txt\n", dir.c_str(), dir.c_str());
+  return 0;
+}
+
+int cmd_seeds(int argc, char** argv) {
+  if (argc != 4) {
+    std::fprintf(stderr, "palp-proto seeds: expected a vectors directory and an output directory\n");
+    return 2;
+  }
+  const std::string dir = argv[2], out = argv[3];
+  std::vector<u8> stream;
+  int written = 0;
+  for (const char* file : {"messages.txt", "malformed.txt"}) {
+    std::string text, error;
+    if (!read_file(dir + "/" + file, text)) {
+      std::fprintf(stderr, "palp-proto seeds: cannot read %s/%s\n", dir.c_str(), file);
+      return 3;
+    }
+    std::vector<VectorRecord> recs;
+    if (!parse_vectors(text, recs, error)) {
+      std::fprintf(stderr, "palp-proto seeds: %s/%s: %s\n", dir.c_str(), file, error.c_str());
+      return 1;
+    }
+    for (const VectorRecord& r : recs) {
+      const std::string path = out + "/" + std::to_string(written++) + "-" + r.name + ".bin";
+      if (!write_file(path, std::string(r.wire.begin(), r.wire.end()))) {
+        std::fprintf(stderr, "palp-proto seeds: cannot write %s\n", path.c_str());
+        return 3;
+      }
+      if (std::string(file) == "messages.txt") stream.insert(stream.end(), r.wire.begin(), r.wire.end());
+    }
+  }
+  if (!write_file(out + "/all-messages.bin", std::string(stream.begin(), stream.end()))) {
+    std::fprintf(stderr, "palp-proto seeds: cannot write into %s\n", out.c_str());
+    return 3;
+  }
+  std::printf("wrote %d seeds and all-messages.bin into %s\n", written, out.c_str());
   return 0;
 }
 
@@ -286,6 +324,7 @@ int main(int argc, char** argv) {
   }
   if (cmd == "spec") return cmd_spec(argc, argv);
   if (cmd == "vectors") return cmd_vectors(argc, argv);
+  if (cmd == "seeds") return cmd_seeds(argc, argv);
   if (cmd == "decode") return cmd_decode(argc, argv);
   if (cmd == "demo") return cmd_demo();
   std::fprintf(stderr, "palp-proto: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
