@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <iterator>
 
 #include "palp/protocol/catalogue.hpp"
 #include "palp/protocol/wire_types.hpp"
@@ -217,15 +218,21 @@ inline constexpr MessageInfo kMessages[] = {
 #undef PALP_X_INFO
 };
 
+/// Index of a message id in kMessages, or -1 when this build does not know it.
+constexpr int message_index(u8 id) {
+  for (std::size_t k = 0; k < std::size(kMessages); ++k)
+    if (static_cast<u8>(kMessages[k].id) == id) return static_cast<int>(k);
+  return -1;
+}
 /// The catalogue entry of a message id, or nullptr when this build does not know it.
 constexpr const MessageInfo* find_message(u8 id) {
-  for (const auto& m : kMessages)
-    if (static_cast<u8>(m.id) == id) return &m;
-  return nullptr;
+  const int k = message_index(id);
+  return k < 0 ? nullptr : &kMessages[k];
 }
+/// The catalogue name of a message id, or nullptr when this build does not know it.
 constexpr const char* message_name(MessageId id) {
-  const MessageInfo* m = find_message(static_cast<u8>(id));
-  return m != nullptr ? m->name : nullptr;
+  const int k = message_index(static_cast<u8>(id));
+  return k < 0 ? nullptr : kMessages[k].name;
 }
 
 /// Calls f(Name{}) with a default-constructed value of every message type, in catalogue order.
