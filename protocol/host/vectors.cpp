@@ -179,16 +179,8 @@ std::string malformed_vectors_text() {
 std::vector<std::string> receive_outcomes(const u8* wire, std::size_t size) {
   std::vector<std::string> out;
   FrameReader reader;
-  reader.feed(
-      wire, size,
-      [&](const Frame& f) {
-        const Reject r = decode_message(f.header.id, f.payload, f.header.payload_len,
-                                        [&](const auto& m) { out.emplace_back(m.kName); });
-        if (r != Reject::ok) {
-          reader.count_message_reject(r);
-          out.emplace_back(reject_name(r));
-        }
-      },
+  reader.feed_messages(
+      wire, size, [&](const FrameHeader&, const auto& m) { out.emplace_back(m.kName); },
       [&](Reject r) { out.emplace_back(reject_name(r)); });
   return out;
 }

@@ -292,3 +292,30 @@ TEST(Ranges, AnOpenUpperBoundAcceptsTheTypesMaximum) {
 
 }  // namespace
 }  // namespace palp::proto
+
+namespace palp::proto {
+namespace {
+
+TEST(Ranges, AnF32ExactlyAtItsBoundIsAccepted) {
+  LoadRamp r;
+  r.step_A = 0.0001f;
+  r.dwell_s = 0.0001f;
+  EXPECT_EQ(r.first_out_of_range(), -1);
+  LoadSine s;
+  s.frequency_Hz = 0.01f;
+  EXPECT_EQ(s.first_out_of_range(), -1);
+  s.frequency_Hz = 0.0099f;
+  EXPECT_EQ(s.first_out_of_range(), 2);
+}
+
+TEST(Codec, TextCutToItsLengthNeverSplitsAUtf8Character) {
+  const Str<4> fits("ab\xc3\xa9\xc3\xa9");  // "abéé": the first é ends at byte 4
+  EXPECT_EQ(fits.length(), 4u);
+  EXPECT_EQ(fits.bytes[3], '\xa9');
+  const Str<3> cut("ab\xc3\xa9");  // é would be cut after its first byte: left out whole
+  EXPECT_EQ(cut.length(), 2u);
+  EXPECT_EQ(cut.bytes[2], '\0');
+}
+
+}  // namespace
+}  // namespace palp::proto

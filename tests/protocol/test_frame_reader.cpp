@@ -172,18 +172,33 @@ TEST(FrameReader, AnotherMajorIsRejectedExceptForFrozenMessages) {
   }
 }
 
-TEST(FrameReader, MessageLevelRejectsAreCountedUnderTheirOwnReason) {
+TEST(FrameReader, MessageLevelRejectsAreCountedOnceUnderTheirOwnReason) {
+  std::vector<u8> stream;
+  auto add = [&](u8 id, std::vector<u8> payload) {
+    std::vector<u8> w(kMaxWireFrame);
+    w.resize(encode_frame(FrameHeader{kProtocolMajor, kProtocolMinor, id, 0, 1, 0},
+                          payload.data(), payload.size(), w.data(), w.size()));
+    stream.insert(stream.end(), w.begin(), w.end());
+  };
+  add(0xEE, {1, 2, 3});                                      // unknown id
+  add(static_cast<u8>(MessageId::Ping), {1, 2, 3});          // Ping needs 12 bytes
+  add(static_cast<u8>(MessageId::Ping), std::vector<u8>(12, 7));
   FrameReader r;
-  std::vector<u8> raw(kMaxWireFrame);
-  const u8 junk[] = {1, 2, 3};
-  raw.resize(encode_frame(FrameHeader{kProtocolMajor, kProtocolMinor, 0xEE, 0, 1, 0}, junk, 3,
-                          raw.data(), raw.size()));
-  feed(r, raw);
-  EXPECT_EQ(r.counters()[Reject::ok], 1u);  // the frame itself is sound
-  r.count_message_reject(Reject::unknown_message);
-  EXPECT_EQ(r.counters()[Reject::ok], 0u);
+  std::vector<std::string> messages;
+  std::vector<Reject> rejects;
+  r.feed_messages(
+      stream.data(), stream.size(),
+      [&](const FrameHeader& h, const auto& m) {
+        EXPECT_EQ(h.id, static_cast<u8>(m.kId));
+        messages.emplace_back(m.kName);
+      },
+      [&](Reject x) { rejects.push_back(x); });
+  EXPECT_EQ(messages, std::vector<std::string>{"Ping"});
+  EXPECT_EQ(rejects, (std::vector<Reject>{Reject::unknown_message, Reject::short_payload}));
+  EXPECT_EQ(r.counters()[Reject::ok], 1u);
   EXPECT_EQ(r.counters()[Reject::unknown_message], 1u);
-  EXPECT_EQ(r.counters().rejected(), 1u);
+  EXPECT_EQ(r.counters()[Reject::short_payload], 1u);
+  EXPECT_EQ(r.counters().rejected(), 2u);
 }
 
 TEST(ParseFrame, ChecksLengthThenCrcThenPayloadLengthThenMajor) {

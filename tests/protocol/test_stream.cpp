@@ -5,6 +5,7 @@
 
 #include "palp/protocol/examples.hpp"
 #include "palp/protocol/stream.hpp"
+#include "palp/protocol/multisine.hpp"
 #include "palp/protocol/text.hpp"
 
 namespace palp::proto {
@@ -87,6 +88,72 @@ TEST(Stream, TheExampleBatchScalesToTheIntendedPhysicalValues) {
   EXPECT_NEAR(s.i_cmd * kCurrentLsb_A, 0.5, 1e-9);
   EXPECT_NEAR(s.v_cmd * kVoltageLsb_V, 2.9, 1e-9);
   EXPECT_NEAR(s.pressure[0] * kPressureLsb_Pa, -1.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace palp::proto
+
+namespace palp::proto {
+namespace {
+
+TEST(BatchCheck, TheExampleBatchIsConsistent) {
+  EXPECT_EQ(check_batch(example_batch(0, 0, 5)), BatchProblem::none);
+}
+
+TEST(BatchCheck, DataNotMatchingTheCountAndChannelsIsASizeMismatch) {
+  SampleBatch b = example_batch(0, 0, 5);
+  b.sample_count = 6;
+  EXPECT_EQ(check_batch(b), BatchProblem::size_mismatch);
+}
+
+TEST(BatchCheck, ChannelBitsThisBuildDoesNotKnowAreRefused) {
+  SampleBatch b = example_batch(0, 0, 5);
+  b.channels = static_cast<u16>(b.channels | 0x0800);
+  EXPECT_EQ(check_batch(b), BatchProblem::unknown_channels);
+  EXPECT_STREQ(batch_problem_name(check_batch(b)), "unknown_channels");
+}
+
+TEST(BatchCheck, AZeroPeriodIsRefused) {
+  SampleBatch b = example_batch(0, 0, 5);
+  b.period_ns = 0;
+  EXPECT_EQ(check_batch(b), BatchProblem::zero_period);
+}
+
+}  // namespace
+}  // namespace palp::proto
+
+namespace palp::proto {
+namespace {
+
+TEST(Multisine, XorshiftFollowsMarsagliasShifts) {
+  // 1 -> 1 ^ 1<<13 = 0x2001; ^ >>17 = 0x2001; ^ <<5 = 0x2001 ^ 0x40020 = 0x42021
+  EXPECT_EQ(xorshift32(1), 0x00042021u);
+  EXPECT_EQ(xorshift32(0x00042021u), 0x04080601u);
+}
+
+TEST(Multisine, TheDefaultProgramExcitesNinetyLinesFrom2To20Hz) {
+  const LoadMultisine m;
+  EXPECT_EQ(multisine_line_count(m.line_first, m.line_last, m.line_step), 90u);
+  EXPECT_EQ(multisine_line_count(10, 9, 1), 0u);
+  EXPECT_EQ(multisine_line_count(10, 20, 0), 0u);
+}
+
+TEST(Multisine, RandomPhasesAreTheSuccessiveGeneratorOutputs) {
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::random_seeded, 1, 0, 90), 0x00042021u);
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::random_seeded, 1, 1, 90), 0x04080601u);
+}
+
+TEST(Multisine, SchroederPhasesAreMinusNTimesNMinusOneOver2KTurns) {
+  // K = 4: line n+1 = 1, 2, 3, 4 at 0, -2/8, -6/8, -12/8 turns = 0, 0.75, 0.25, 0.5
+  const u32 quarter = 1u << 30;
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::schroeder, 0, 0, 4), 0u);
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::schroeder, 0, 1, 4), 3 * quarter);
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::schroeder, 0, 2, 4), quarter);
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::schroeder, 0, 3, 4), 2 * quarter);
+}
+
+TEST(Multisine, ZeroPhasesAreZero) {
+  EXPECT_EQ(multisine_phase_turns(PhaseMode::zero, 7, 5, 90), 0u);
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 //   - a minor version may add messages, enum values and *trailing* fields (with `since` set to
 //     the new minor and a default that a decoder fills in when an older peer leaves them out);
 //   - after any change, bump PALP_PROTOCOL_MINOR (or MAJOR), regenerate the vectors
-//     (`palp-proto vectors --write protocol/vectors`) and the SPEC tables
-//     (`palp-proto spec-tables`); the tests fail until both match.
+//     (`palp-proto vectors protocol/vectors`) and the SPEC's generated blocks
+//     (`palp-proto spec --write protocol/SPEC.md`); the tests fail until both match.
 //
 // Enumerations:   E(name, value, doc)
 // Messages:       M(Name, id, direction, since_minor, Reply, doc)
@@ -100,8 +100,8 @@
   E(contact, 4, "A contact watch fired.")
 
 #define PALP_ENUM_PhaseMode(E)                                                        \
-  E(random_seeded, 0, "Phases from the SPEC's xorshift32 generator seeded by phase_seed.") \
-  E(schroeder, 1, "Schroeder phases, phi_k = -pi k (k - 1) / K.")                     \
+  E(random_seeded, 0, "Line n (n from 0) at the (n+1)-th xorshift32 output from phase_seed / 2^32 turns (multisine.hpp).") \
+  E(schroeder, 1, "Schroeder phases: line n of K (n from 1) at -n (n - 1) / (2 K) turns (multisine.hpp).")                     \
   E(zero, 2, "All phases zero (maximum crest factor; for tests).")
 
 #define PALP_ENUM_GapStage(E)                                                      \
@@ -160,7 +160,7 @@
   M(Nak, 0x06, D2H, 1, None, "The request with this sequence number was refused.")             \
   M(Ping, 0x10, H2D, 1, Pong, "Round-trip and time sync.")                                     \
   M(Pong, 0x11, D2H, 1, None, "Answer to Ping with the device time.")                          \
-  M(Heartbeat, 0x12, H2D, 1, Ack, "Keeps the host watchdog fed (any request does too).")       \
+  M(Heartbeat, 0x12, H2D, 1, Ack, "Keeps the host watchdog fed; so does every other valid request (rejected frames do not).")       \
   M(GetStatus, 0x13, H2D, 1, Status, "Read the status.")                                       \
   M(Status, 0x14, D2H, 1, None, "State, fault, program, live values.")                         \
   M(GetHealth, 0x15, H2D, 1, Health, "Read the health counters.")                              \
@@ -230,7 +230,7 @@
   F(S, u8, 1, request_id, 1, 0, NOLIM, NOLIM, "", "Message id of the refused request.")     \
   F(E, ErrorCode, 1, error, 1, ErrorCode::ok, NOLIM, NOLIM, "", "Why.")                      \
   F(S, u8, 1, field_index, 1, 255, NOLIM, NOLIM, "", "Zero-based index of the offending field, 255 if none.") \
-  F(S, i32, 1, detail, 1, 0, NOLIM, NOLIM, "", "Error-specific detail (e.g. the fault reason).")
+  F(S, i32, 1, detail, 1, 0, NOLIM, NOLIM, "", "For faulted: the latched FaultReason; for busy: the running ProgramKind; otherwise 0.")
 
 // --- session, time, status -------------------------------------------------------------------
 #define PALP_FIELDS_Ping(F)                                                           \
@@ -293,7 +293,7 @@
   F(S, i32, 1, travel_min_counts, 1, -2000, NOLIM, NOLIM, "counts", "Lowest allowed encoder count (toward -z).") \
   F(S, i32, 1, travel_max_counts, 1, 25000, NOLIM, NOLIM, "counts", "Highest allowed encoder count (toward +z).") \
   F(S, u32, 1, heartbeat_timeout_ms, 1, 500, 50, 10000, "ms", "Host watchdog timeout, armed while current is non-zero or a program runs.") \
-  F(S, u32, 1, control_rate_Hz, 1, 20000, 20000, 40000, "Hz", "Control tick rate: 20000 or 40000.") \
+  F(S, u32, 1, control_rate_Hz, 1, 20000, 20000, 40000, "Hz", "Control tick rate; a device accepts 20000 and 40000 and answers other values with out_of_range.") \
   F(S, f32, 1, supply_V, 1, 24, 6, 48, "V", "Coil supply voltage (the current loop's saturation).") \
   F(E, ContactOutputMode, 1, contact_output, 1, ContactOutputMode::disabled, NOLIM, NOLIM, "", "Contact-output line to the robot.") \
   F(S, u16, 1, contact_output_hold_ms, 1, 100, 0, 10000, "ms", "Minimum time the contact line stays asserted.")
@@ -378,7 +378,7 @@
 #define PALP_FIELDS_StreamConfigure(F)                                                            \
   F(S, u16, 1, channels, 1, 0x07FF, 1, 0x07FF, "", "Channel bits to stream.")                     \
   F(S, u16, 1, decimation, 1, 2, 1, 65535, "ticks", "Control ticks per sample (rate = control_rate_Hz / decimation).") \
-  F(S, u16, 1, batch_samples, 1, 40, 1, 960, "samples", "Samples per SampleBatch (its data must fit 960 bytes).")
+  F(S, u16, 1, batch_samples, 1, 40, 1, 960, "samples", "Samples per SampleBatch; more than fit 960 data bytes is out_of_range.")
 
 #define PALP_FIELDS_StreamConfig(F)                                                               \
   F(S, u16, 1, channels, 1, 0, NOLIM, NOLIM, "", "Channel bits streamed.")                        \

@@ -67,14 +67,49 @@ struct Frame {
 /// Checks one decoded (un-COBSed) frame: length, CRC, payload length, major version.
 Reject parse_frame(const u8* data, std::size_t size, Frame& out);
 
-/// Incremental frame reader: feed it bytes as they arrive, in chunks of any size. It calls
-/// on_frame(const Frame&) for each valid frame and on_reject(Reject) for each rejected one, and
-/// counts both. Bytes before the first delimiter and runs of 0x00 are skipped; after garbage it
-/// resynchronises at the next 0x00. It never allocates and never holds more than one frame.
+/// Incremental frame reader: feed it bytes as they arrive, in chunks of any size. Runs of 0x00
+/// are idle; any other bytes up to a 0x00 are one frame, checked and accepted or rejected, so
+/// garbage costs one rejected frame and the reader is in step again at the next 0x00. It never allocates and never holds more than one frame. Every frame it completes is
+/// counted exactly once in counters(): under Reject::ok when accepted, else under its reason.
 class FrameReader {
  public:
+  /// Frame level only: calls on_frame(const Frame&) for each frame that passes the frame checks
+  /// and on_reject(Reject) for each that does not.
   template <class OnFrame, class OnReject>
   void feed(const u8* data, std::size_t size, OnFrame&& on_frame, OnReject&& on_reject) {
+    feed_frames(
+        data, size,
+        [&](const Frame& f) {
+          counters_.count(Reject::ok);
+          on_frame(f);
+        },
+        on_reject);
+  }
+
+  /// Frames and messages: decodes each accepted frame's payload and calls
+  /// on_message(const FrameHeader&, const M&) with the typed message, or on_reject(Reject) with
+  /// the frame-level or message-level reason (unknown_message, short_payload, bad_field).
+  template <class OnMessage, class OnReject>
+  void feed_messages(const u8* data, std::size_t size, OnMessage&& on_message,
+                     OnReject&& on_reject) {
+    feed_frames(
+        data, size,
+        [&](const Frame& f) {
+          const Reject r = decode_message(f.header.id, f.payload, f.header.payload_len,
+                                          [&](const auto& m) { on_message(f.header, m); });
+          counters_.count(r);
+          if (r != Reject::ok) on_reject(r);
+        },
+        on_reject);
+  }
+
+  const RejectCounters& counters() const { return counters_; }
+  /// Bytes held toward the next frame (for tests and health).
+  std::size_t pending() const { return len_; }
+
+ private:
+  template <class OnFrame, class OnReject>
+  void feed_frames(const u8* data, std::size_t size, OnFrame&& on_frame, OnReject&& on_reject) {
     for (std::size_t k = 0; k < size; ++k) {
       const u8 b = data[k];
       if (b != 0) {
@@ -83,39 +118,21 @@ class FrameReader {
         continue;
       }
       if (overflow_) {
-        reject(Reject::oversize, on_reject);
+        counters_.count(Reject::oversize);
+        on_reject(Reject::oversize);
       } else if (len_ > 0) {
         Frame f{};
         const Reject r = finish(f);
         if (r == Reject::ok) {
-          counters_.count(Reject::ok);
           on_frame(static_cast<const Frame&>(f));
         } else {
-          reject(r, on_reject);
+          counters_.count(r);
+          on_reject(r);
         }
       }
       len_ = 0;
       overflow_ = false;
     }
-  }
-
-  /// Counts a rejection found after the frame level (unknown message, short payload, bad field),
-  /// so that one set of counters covers the whole receive path.
-  void count_message_reject(Reject r) {
-    counters_.count(r);
-    // the frame was counted as accepted at frame level; move it to its real reason
-    if (counters_.by_reason[0] > 0) --counters_.by_reason[0];
-  }
-
-  const RejectCounters& counters() const { return counters_; }
-  /// Bytes held toward the next frame (for tests and health).
-  std::size_t pending() const { return len_; }
-
- private:
-  template <class OnReject>
-  void reject(Reject r, OnReject& on_reject) {
-    counters_.count(r);
-    on_reject(r);
   }
   Reject finish(Frame& out);
 

@@ -38,11 +38,10 @@ struct Verdict {
   IncompatibleBecause because = IncompatibleBecause::none;
 };
 
-/// Judges a host against a device. Rules, in order:
+/// Judges a host against a device. Rules, in the order they are applied:
 ///  1. different majors: incompatible (major_differs);
-///  2. major 0: any difference in minor (unstable_minor) or schema hash (schema_differs) is
-///     incompatible; equal is compatible;
-///  3. same minor: equal hashes compatible, different hashes incompatible (schema_differs);
+///  2. same minor: equal hashes compatible, different hashes incompatible (schema_differs);
+///  3. major 0 (no compatibility promise) and different minors: incompatible (unstable_minor);
 ///  4. host minor newer than the device's: compatible_missing_features;
 ///  5. device minor newer than the host's: compatible (the host uses a subset).
 constexpr Verdict judge(const ProtocolVersion& host, const ProtocolVersion& device) {

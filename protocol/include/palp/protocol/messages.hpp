@@ -136,12 +136,18 @@ constexpr bool scalar_in_range(const T& value, const L& lo, const H& hi) {
   if constexpr (std::is_enum_v<T>) {
     return true;  // unknown enum values are judged by the command handler
   } else {
+    // bounds are taken in the field's own type, so an f32 field accepts the f32 nearest its
+    // bound (0.0001f is below the double 0.0001)
+    const auto bound = [](const auto& b) {
+      if constexpr (std::is_floating_point_v<T>) return static_cast<double>(static_cast<T>(b));
+      else return static_cast<double>(b);
+    };
     const double v = static_cast<double>(value);
     if (v != v) return false;
     if constexpr (!std::is_same_v<L, NoLimit>)
-      if (below(v, static_cast<double>(lo))) return false;
+      if (below(v, bound(lo))) return false;
     if constexpr (!std::is_same_v<H, NoLimit>)
-      if (!(v <= static_cast<double>(hi))) return false;
+      if (!(v <= bound(hi))) return false;
     return true;
   }
 }

@@ -38,6 +38,30 @@ constexpr std::size_t bytes_per_sample(u16 mask) {
   return n;
 }
 
+/// What is wrong with a SampleBatch, if anything (a receiver checks every batch before use).
+enum class BatchProblem : u8 {
+  none,
+  unknown_channels,  ///< channel bits this build does not know: the device must never send them
+  size_mismatch,     ///< data is not sample_count x bytes_per_sample(channels) bytes
+  zero_period,       ///< period_ns is 0
+};
+constexpr const char* batch_problem_name(BatchProblem p) {
+  switch (p) {
+    case BatchProblem::none: return "none";
+    case BatchProblem::unknown_channels: return "unknown_channels";
+    case BatchProblem::size_mismatch: return "size_mismatch";
+    case BatchProblem::zero_period: return "zero_period";
+  }
+  return "invalid";
+}
+constexpr BatchProblem check_batch(const SampleBatch& b) {
+  if ((b.channels & ~kAllChannels) != 0) return BatchProblem::unknown_channels;
+  if (b.data.size != static_cast<std::size_t>(b.sample_count) * bytes_per_sample(b.channels))
+    return BatchProblem::size_mismatch;
+  if (b.period_ns == 0) return BatchProblem::zero_period;
+  return BatchProblem::none;
+}
+
 /// Appends one sample's selected channels to w.
 void pack_sample(Writer& w, const RawSample& s, u16 mask);
 /// Reads one sample's selected channels from r; false when r runs out.

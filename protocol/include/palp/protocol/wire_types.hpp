@@ -34,9 +34,21 @@ struct Str {
   constexpr Str() = default;
   constexpr Str(const char* text) { assign(text); }  // NOLINT: implicit from literals is the point
 
+  /// Copies text, cut to N bytes; a UTF-8 character that would be cut is left out whole.
   constexpr void assign(const char* text) {
     bytes = {};
-    for (std::size_t k = 0; k < N && text != nullptr && text[k] != '\0'; ++k) bytes[k] = text[k];
+    if (text == nullptr) return;
+    std::size_t n = 0;
+    for (; n < N && text[n] != '\0'; ++n) bytes[n] = text[n];
+    // drop a trailing UTF-8 sequence whose lead byte promises more bytes than were kept
+    std::size_t lead = n;
+    while (lead > 0 && n - lead < 4 && (static_cast<unsigned char>(bytes[lead - 1]) & 0xC0) == 0x80)
+      --lead;
+    if (lead == 0) return;
+    const auto b = static_cast<unsigned char>(bytes[lead - 1]);
+    const std::size_t need = b < 0x80 ? 1 : (b >= 0xF0 ? 4 : (b >= 0xE0 ? 3 : (b >= 0xC0 ? 2 : 1)));
+    if (lead - 1 + need > n)
+      for (std::size_t k = lead - 1; k < n; ++k) bytes[k] = '\0';
   }
   /// Number of bytes before the first zero (at most N).
   constexpr std::size_t length() const {

@@ -1,0 +1,23 @@
+// Cortex-M4 System Control Block registers used by startup.
+//
+// Sources:
+//   [ARM] ARMv7-M Architecture Reference Manual (ARM DDI 0403E), B3.2.20 "Coprocessor Access
+//         Control Register, CPACR": address 0xE000ED88; CP10 in bits [21:20], CP11 in [23:22],
+//         0b11 = full access. Both must be enabled together for the FPU.
+//   [GUG] Cortex-M4 Devices Generic User Guide (ARM DUI 0553), 4.6.1 "Coprocessor Access Control
+//         Register": the same, and "Enabling the FPU" (set CP10/CP11, then DSB and ISB).
+//   [QD]  reference/qemu-icount.md: mps2-an386 has the FPU; the reset handler must enable it.
+#pragma once
+
+#include <cstdint>
+
+namespace palp::board::scb {
+
+inline constexpr std::uintptr_t kCpacr = 0xE000ED88u;        // [ARM], [GUG]
+inline constexpr std::uint32_t kCpacrCp10Cp11Full = 0xFu << 20;  // [ARM], [GUG]
+
+inline volatile std::uint32_t& cpacr() {
+  return *reinterpret_cast<volatile std::uint32_t*>(kCpacr);
+}
+
+}  // namespace palp::board::scb
