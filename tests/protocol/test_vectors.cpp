@@ -146,3 +146,49 @@ TEST(Spec, GeneratedBlocksMatchTheCatalogue) {
 
 }  // namespace
 }  // namespace palp::proto
+
+namespace palp::proto {
+namespace {
+
+// The hand-written parts of SPEC.md quote wire bytes; they must be this build's bytes.
+TEST(Spec, EveryFencedHexExampleIsTheWireOfAGoldenVector) {
+  std::string wires;
+  for (const char* file : {"protocol/vectors/messages.txt", "protocol/vectors/malformed.txt"})
+    for (const VectorRecord& r : records(file)) wires += to_hex(r.wire) + "\n";
+  std::istringstream spec(read("protocol/SPEC.md"));
+  int examples = 0;
+  bool in_block = false;
+  std::string line, block;
+  while (std::getline(spec, line)) {
+    if (line.rfind("```", 0) != 0) {
+      if (in_block) block += line + "\n";
+      continue;
+    }
+    if (!in_block) {  // an opening fence; only plain ``` blocks hold hex examples
+      in_block = true;
+      block.clear();
+      if (line != "```") block = "not hex";
+      continue;
+    }
+    in_block = false;
+    const auto bytes = parse_hex(block);
+    if (!bytes || bytes->size() < 8) continue;
+    ++examples;
+    EXPECT_NE(wires.find(to_hex(*bytes)), std::string::npos)
+        << "SPEC.md quotes wire bytes that no golden vector has:\n" << block;
+  }
+  EXPECT_FALSE(in_block) << "unbalanced ``` fences in SPEC.md";
+  EXPECT_GE(examples, 5);
+}
+
+TEST(Spec, NamesThisBuildsVersionAndSchemaHash) {
+  char expected[128];
+  std::snprintf(expected, sizeof expected,
+                "This document describes **protocol %u.%u** (major %u, minor %u), schema hash "
+                "`0x%08x`",
+                kProtocolMajor, kProtocolMinor, kProtocolMajor, kProtocolMinor, kSchemaHash);
+  EXPECT_NE(read("protocol/SPEC.md").find(expected), std::string::npos) << expected;
+}
+
+}  // namespace
+}  // namespace palp::proto

@@ -1,6 +1,7 @@
-// Multisine line phases (PhaseMode), defined exactly so that the device, which generates the
-// waveform, and the host, which analyses it, compute the same phases bit for bit. A phase is a
-// fraction of a turn as a u32: phase_turns / 2^32 of 2*pi radians.
+// Multisine line phases (PhaseMode, SPEC.md §10 notes), defined exactly so that the device,
+// which generates the waveform, and the host, which analyses it, compute the same phases bit for
+// bit. Line n is line_amplitude_A * cos(2*pi*(f_n*t + phi_n)) about offset_A, f_n =
+// (line_first + n*line_step) * fundamental_Hz; phi_n in turns is phase_turns / 2^32.
 #pragma once
 
 #include "palp/protocol/messages.hpp"
