@@ -30,7 +30,7 @@ std::vector<VectorRecord> records(const std::string& relative) {
 
 constexpr const char* kRegenerate =
     "the catalogue or the codec changed: if that was intended, bump the protocol version and run "
-    "`build/release/protocol/palp-proto vectors protocol/vectors`";
+    "`build/release-with-assertions/protocol/palp-proto vectors protocol/vectors`";
 
 TEST(GoldenVectors, MessagesFileIsWhatThisBuildGenerates) {
   EXPECT_EQ(read("protocol/vectors/messages.txt"), golden_vectors_text()) << kRegenerate;
@@ -140,7 +140,7 @@ TEST(Spec, GeneratedBlocksMatchTheCatalogue) {
   EXPECT_NE(spec.find("<!-- BEGIN GENERATED messages -->"), std::string::npos);
   EXPECT_NE(spec.find("<!-- BEGIN GENERATED schema -->"), std::string::npos);
   EXPECT_TRUE(fresh == spec)
-      << "protocol/SPEC.md is out of date: run `build/release/protocol/palp-proto spec --write "
+      << "protocol/SPEC.md is out of date: run `build/release-with-assertions/protocol/palp-proto spec --write "
          "protocol/SPEC.md`";
 }
 
