@@ -20,6 +20,18 @@ DeviceInfo examples_device_info() {
   return info;
 }
 
+LoadRamp example_ramp_2d() {
+  LoadRamp r;
+  r.start_A = 0.5f;
+  r.stop_A = 3.0f;
+  r.step_A = 0.01f;
+  r.dwell_s = 0.025f;
+  r.repetitions = 3;
+  r.unload = 1;
+  r.displacement_limit_counts = 5000;
+  return r;
+}
+
 SampleBatch example_batch(u32 first_index, u64 first_time_us, u16 n) {
   SampleBatch b;
   b.first_index = first_index;

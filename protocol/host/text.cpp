@@ -16,19 +16,25 @@ std::string to_hex(std::span<const u8> bytes) {
   return s;
 }
 
-std::optional<std::vector<u8>> parse_hex(std::string_view text) {
+std::optional<std::vector<u8>> parse_hex(std::string_view text, std::string* error) {
   std::vector<u8> out;
   int hi = -1;
-  for (char c : text) {
+  const auto fail = [&](std::string why) -> std::optional<std::vector<u8>> {
+    if (error != nullptr) *error = std::move(why);
+    return std::nullopt;
+  };
+  for (std::size_t pos = 0; pos < text.size(); ++pos) {
+    const char c = text[pos];
     if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
-      if (hi >= 0) return std::nullopt;  // a lone digit
+      if (hi >= 0) return fail("a lone hex digit at character " + std::to_string(pos));
       continue;
     }
     int v;
     if (c >= '0' && c <= '9') v = c - '0';
     else if (c >= 'a' && c <= 'f') v = c - 'a' + 10;
     else if (c >= 'A' && c <= 'F') v = c - 'A' + 10;
-    else return std::nullopt;
+    else return fail("character " + std::to_string(pos + 1) + " '" + std::string(1, c) +
+                     "' is not a hex digit");
     if (hi < 0) {
       hi = v;
     } else {
@@ -36,7 +42,7 @@ std::optional<std::vector<u8>> parse_hex(std::string_view text) {
       hi = -1;
     }
   }
-  if (hi >= 0) return std::nullopt;
+  if (hi >= 0) return fail("a lone hex digit at the end");
   return out;
 }
 

@@ -176,9 +176,10 @@ int cmd_decode(int argc, char** argv) {
     s << std::cin.rdbuf();
     text = s.str();
   }
-  const auto bytes = parse_hex(text);
+  std::string error;
+  const auto bytes = parse_hex(text, &error);
   if (!bytes) {
-    std::fprintf(stderr, "palp-proto decode: input is not hex bytes\n");
+    std::fprintf(stderr, "palp-proto decode: %s\n", error.c_str());
     return 2;
   }
   return decode_and_print(*bytes);
@@ -255,13 +256,7 @@ int cmd_demo() {
   }
 
   // 3. a program
-  LoadRamp ramp;
-  ramp.start_A = 0.5f;
-  ramp.stop_A = 3.0f;
-  ramp.step_A = 0.01f;
-  ramp.dwell_s = 0.025f;
-  ramp.repetitions = 3;
-  ramp.displacement_limit_counts = 5000;
+  const LoadRamp ramp = example_ramp_2d();
   const auto ramp_wire = wire_of(ramp, 2, 0);
   std::printf("\n3. The paper's 2D indentation ramp as one LoadRamp frame (%zu bytes): the device\n"
               "   runs it; the host never sends set-points.\n   %s\n",

@@ -12,17 +12,6 @@ namespace {
 
 using namespace palp::proto;
 
-LoadRamp paper_ramp() {
-  LoadRamp r;
-  r.start_A = 0.5f;
-  r.stop_A = 3.0f;
-  r.step_A = 0.01f;
-  r.dwell_s = 0.025f;
-  r.repetitions = 3;
-  r.displacement_limit_counts = 5000;
-  return r;
-}
-
 template <class M>
 void encode_bench(benchmark::State& state, const M& m) {
   std::vector<u8> out(kMaxWireFrame);
@@ -86,8 +75,8 @@ void BM_DecodeSampleBatch40(benchmark::State& state) {
 void BM_DecodeAndUnpackSampleBatch40(benchmark::State& state) {
   decode_bench(state, example_batch(0, 0, 40), true);
 }
-void BM_EncodeLoadRamp(benchmark::State& state) { encode_bench(state, paper_ramp()); }
-void BM_DecodeLoadRamp(benchmark::State& state) { decode_bench(state, paper_ramp(), false); }
+void BM_EncodeLoadRamp(benchmark::State& state) { encode_bench(state, example_ramp_2d()); }
+void BM_DecodeLoadRamp(benchmark::State& state) { decode_bench(state, example_ramp_2d(), false); }
 
 void BM_Crc32_1KiB(benchmark::State& state) {
   std::vector<u8> data(1024);

@@ -192,3 +192,26 @@ TEST(Spec, NamesThisBuildsVersionAndSchemaHash) {
 
 }  // namespace
 }  // namespace palp::proto
+
+namespace palp::proto {
+namespace {
+
+TEST(Hex, ParsesSpacedAndUnspacedBytesInEitherCase) {
+  EXPECT_EQ(parse_hex("0a FF\n10"), (std::vector<u8>{0x0a, 0xff, 0x10}));
+  EXPECT_EQ(parse_hex("0aff10"), (std::vector<u8>{0x0a, 0xff, 0x10}));
+  EXPECT_EQ(parse_hex(""), std::vector<u8>{});
+  EXPECT_EQ(to_hex(std::vector<u8>{0x0a, 0xff}), "0a ff");
+}
+
+TEST(Hex, NamesTheCharacterThatIsNotHex) {
+  std::string error;
+  EXPECT_FALSE(parse_hex("01 0g", &error));
+  EXPECT_EQ(error, "character 5 'g' is not a hex digit");
+  EXPECT_FALSE(parse_hex("01 2 34", &error));
+  EXPECT_EQ(error, "a lone hex digit at character 4");
+  EXPECT_FALSE(parse_hex("01 234", &error));
+  EXPECT_EQ(error, "a lone hex digit at the end");
+}
+
+}  // namespace
+}  // namespace palp::proto

@@ -52,6 +52,10 @@ M filled_example(u32 salt = 1) {
 /// The DeviceInfo of a palp-sim speaking this build's protocol.
 DeviceInfo examples_device_info();
 
+/// The paper's 2D indentation ramp (§V-A): 0.5 -> 3 A by 0.01 A every 25 ms, symmetric unload,
+/// 3 repetitions, turning round early after 5000 counts (5 mm).
+LoadRamp example_ramp_2d();
+
 /// A SampleBatch of `n` samples with all channels, values from a slow ramp into contact.
 SampleBatch example_batch(u32 first_index, u64 first_time_us, u16 n);
 
@@ -78,15 +82,7 @@ void for_each_golden(F&& f) {
 
   f("DeviceInfo.palp_sim", examples_device_info(), 1, kFlagResponse);
 
-  LoadRamp ramp2d;  // paper §V-A: 0.5 -> 3 A by 0.01 A every 25 ms, 3 repetitions
-  ramp2d.start_A = 0.5f;
-  ramp2d.stop_A = 3.0f;
-  ramp2d.step_A = 0.01f;
-  ramp2d.dwell_s = 0.025f;
-  ramp2d.repetitions = 3;
-  ramp2d.unload = 1;
-  ramp2d.displacement_limit_counts = 5000;
-  f("LoadRamp.paper_2d", ramp2d, 7, 0);
+  f("LoadRamp.paper_2d", example_ramp_2d(), 7, 0);
 
   LoadSweep sweep;  // paper §IV-B: 1.0 A + 0.1 A, 2-20 Hz in 0.05 Hz steps
   f("LoadSweep.paper", sweep, 8, 0);

@@ -15,8 +15,9 @@ namespace palp::proto {
 /// Lower-case hex bytes separated by single spaces: "0a 01 ff".
 std::string to_hex(std::span<const u8> bytes);
 /// Parses hex bytes; whitespace between bytes is optional. nullopt on any other character or an
-/// odd number of digits.
-std::optional<std::vector<u8>> parse_hex(std::string_view text);
+/// odd number of digits, with the reason in *error when given ("character 7 'g' is not a hex
+/// digit", "a lone hex digit at character 3").
+std::optional<std::vector<u8>> parse_hex(std::string_view text, std::string* error = nullptr);
 
 namespace detail {
 std::string format_scalar(double v, bool is_float);
