@@ -3,6 +3,9 @@
 #include <cstdio>
 
 #include "palp/protocol/codec.hpp"
+#include "palp/protocol/examples.hpp"
+#include "palp/protocol/text.hpp"
+#include "palp/protocol/verdict_text.hpp"
 #include "palp/protocol/schema.hpp"
 #include "palp/protocol/stream.hpp"
 
@@ -126,7 +129,74 @@ std::string canonical_schema_text() {
   return sink.s;
 }
 
+std::string spec_verdict_example() {
+  DeviceInfo d = examples_device_info();
+  d.protocol_minor = static_cast<u8>(kProtocolMinor - 1);
+  d.schema_hash = 0x11111111u;
+  const ProtocolVersion dv{d.protocol_major, d.protocol_minor, d.schema_hash};
+  return "```text\n" +
+         describe_verdict(judge(kThisProtocol, dv), kThisProtocol, d,
+                          missing_feature_names(d.protocol_minor)) +
+         "\n```\n";
+}
+
+std::string spec_example(const std::string& label) {
+  std::string out;
+  for_each_golden([&](const std::string& name, const auto& m, u16 seq, u8 flags) {
+    if (name != label || !out.empty()) return;
+    using M = std::decay_t<decltype(m)>;
+    std::vector<u8> payload(kMaxPayload);
+    payload.resize(static_cast<std::size_t>(encode_payload(m, payload.data(), payload.size())));
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "Header: major %u, minor %u, id 0x%02X (`%s`), flags 0x%02X, seq %u, "
+                  "payload_len %zu.\n\n| bytes | field | value |\n|---|---|---|\n",
+                  kProtocolMajor, kProtocolMinor, static_cast<unsigned>(M::kId), M::kName, flags,
+                  seq, payload.size());
+    out = line;
+    m.visit([&](const FieldInfo& f, const auto& value) {
+      std::array<u8, kMaxPayload> bytes;
+      Writer w(bytes.data(), bytes.size());
+      detail::put(w, value);
+      std::string value_text = detail::format_value(value);
+      if constexpr (std::is_same_v<std::decay_t<decltype(value)>, u32>) {
+        if (std::string(f.name).find("hash") != std::string::npos) {
+          char hex[16];
+          std::snprintf(hex, sizeof hex, "0x%08x", value);
+          value_text = hex;
+        }
+      }
+      out += "| `" + to_hex({bytes.data(), w.size()}) + "` | `" + f.name + "` | " + value_text +
+             " |\n";
+    });
+    std::vector<u8> wire(kMaxWireFrame);
+    wire.resize(encode_message(m, seq, flags, wire.data(), wire.size()));
+    const std::size_t body = kHeaderSize + payload.size();
+    std::vector<u8> raw = {kProtocolMajor, kProtocolMinor, static_cast<u8>(M::kId), flags,
+                           static_cast<u8>(seq), static_cast<u8>(seq >> 8),
+                           static_cast<u8>(payload.size()), static_cast<u8>(payload.size() >> 8)};
+    raw.insert(raw.end(), payload.begin(), payload.end());
+    std::snprintf(line, sizeof line, "\nCRC 0x%08x. Wire (%zu bytes):\n\n```\n",
+                  crc32(raw.data(), body), wire.size());
+    out += line;
+    for (std::size_t k = 0; k < wire.size(); k += 32)
+      out += to_hex({wire.data() + k, std::min<std::size_t>(32, wire.size() - k)}) + "\n";
+    out += "```\n";
+  });
+  return out;
+}
+
 std::string spec_block(const std::string& name) {
+  if (name.rfind("example ", 0) == 0) return spec_example(name.substr(8));
+  if (name == "verdict-example") return spec_verdict_example();
+  if (name == "version") {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "- This document describes **protocol %u.%u** (major %u, minor %u), schema hash "
+                  "`0x%08x` (§7.3).\n",
+                  kProtocolMajor, kProtocolMinor, kProtocolMajor, kProtocolMinor, kSchemaHash);
+    return text;
+  }
   if (name == "messages") return spec_message_tables();
   if (name == "enums") return spec_enum_tables();
   if (name == "stream-rates") return spec_stream_rates();

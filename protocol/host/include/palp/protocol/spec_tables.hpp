@@ -12,6 +12,12 @@ std::string spec_message_tables();   ///< "messages"
 std::string spec_enum_tables();      ///< "enums"
 std::string spec_stream_rates();     ///< "stream-rates"
 std::string canonical_schema_text(); ///< "schema"
+/// "version": SPEC's first bullet, naming this build's protocol version and schema hash.
+/// "verdict-example": the verdict text for a device one minor version older than this build.
+std::string spec_verdict_example();
+/// "example <label>": the golden example `label` (examples.hpp) field by field: header, one row
+/// per field with its bytes and value, CRC and wire bytes. "" when there is no such example.
+std::string spec_example(const std::string& label);
 
 /// The generated block `name` (one of the above), or "" for an unknown name.
 std::string spec_block(const std::string& name);
