@@ -1,0 +1,50 @@
+// A fixed-capacity ring for one thread (no atomics): the stream backlog, the transmit buffer.
+// For the ISR-to-thread hand-off use spsc_queue.hpp instead.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace palp::fw {
+
+template <class T, std::size_t N>
+class Ring {
+  static_assert(N > 0 && (N & (N - 1)) == 0, "capacity must be a power of two");
+
+ public:
+  static constexpr std::size_t capacity = N;
+  bool push(const T& v) {
+    if (size_ == N) return false;
+    items_[(head_ + size_) & (N - 1)] = v;
+    ++size_;
+    return true;
+  }
+  bool pop(T& out) {
+    if (size_ == 0) return false;
+    out = items_[head_];
+    head_ = (head_ + 1) & (N - 1);
+    --size_;
+    return true;
+  }
+  /// The newest item (size() > 0).
+  T& back() { return items_[(head_ + size_ - 1) & (N - 1)]; }
+  /// The k-th oldest item (k < size()).
+  const T& at(std::size_t k) const { return items_[(head_ + k) & (N - 1)]; }
+  void drop_front(std::size_t n) {
+    if (n > size_) n = size_;
+    head_ = (head_ + n) & (N - 1);
+    size_ -= n;
+  }
+  void clear() { head_ = size_ = 0; }
+  std::size_t size() const { return size_; }
+  std::size_t free() const { return N - size_; }
+  bool empty() const { return size_ == 0; }
+
+ private:
+  std::array<T, N> items_{};
+  std::size_t head_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace palp::fw
