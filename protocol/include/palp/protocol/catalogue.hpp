@@ -287,7 +287,7 @@
 
 #define PALP_FIELDS_Params(F)                                                                     \
   F(S, f32, 1, current_clamp_A, 1, 3.2, 0, 4.0, "A", "The commanded current never exceeds this magnitude.") \
-  F(S, f32, 1, i2t_continuous_A, 1, 1.5, 0, 4.0, "A", "Current the coil carries indefinitely (I2t model).") \
+  F(S, f32, 1, i2t_continuous_A, 1, 2.0, 0, 4.0, "A", "Current the coil carries indefinitely (I2t model; an assumption, see firmware/core).") \
   F(S, f32, 1, i2t_limit_A2s, 1, 60, 0.1, 10000, "A^2*s", "I2t model trip level above the continuous rating.") \
   F(S, f32, 1, i2t_tau_s, 1, 120, 1, 10000, "s", "I2t model cooling time constant.")             \
   F(S, i32, 1, travel_min_counts, 1, -2000, NOLIM, NOLIM, "counts", "Lowest allowed encoder count (toward -z).") \
@@ -302,7 +302,7 @@
 #define PALP_FIELDS_GetCalibration(F)
 
 #define PALP_FIELDS_Calibration(F)                                                                \
-  F(S, u16, 1, layout_version, 1, 1, NOLIM, NOLIM, "", "Calibration block layout version on the device.") \
+  F(S, u16, 1, layout_version, 1, 2, NOLIM, NOLIM, "", "Calibration block layout version on the device.") \
   F(V, i32, 16, kf_position_counts, 1, 0, NOLIM, NOLIM, "counts", "Force-constant table: stroke positions from the stroke origin, increasing.") \
   F(V, f32, 16, kf_N_per_A, 1, 0, 0, 20, "N/A", "Force-constant table: K_f at each position; same count.") \
   F(S, f32, 1, current_offset_A, 1, 0, -0.5, 0.5, "A", "Current-sense offset, subtracted.")      \
@@ -409,7 +409,7 @@
   F(S, u64, 1, time_us, 1, 0, NOLIM, NOLIM, "us", "Device time of the tick that fired.")          \
   F(S, i32, 1, encoder_count, 1, 0, NOLIM, NOLIM, "counts", "Encoder count that fired.")          \
   F(S, i32, 1, armed_count, 1, 0, NOLIM, NOLIM, "counts", "Encoder count when the watch started.") \
-  F(S, u32, 1, sample_index, 1, 0, NOLIM, NOLIM, "", "Stream index of the same tick (0 when not streaming).")
+  F(S, u32, 1, sample_index, 1, 0, NOLIM, NOLIM, "", "Stream index of the first sample taken at or after the tick that fired (0 when not streaming).")
 
 #define PALP_FIELDS_EventProgramFinished(F)                                                       \
   F(S, u64, 1, time_us, 1, 0, NOLIM, NOLIM, "us", "Device time of the end.")                      \

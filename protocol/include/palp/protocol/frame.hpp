@@ -54,6 +54,7 @@ std::size_t encode_message(const M& m, u16 seq, u8 flags, u8* out, std::size_t c
   const int n = encode_payload(m, payload.data(), payload.size());
   if (n < 0) return 0;
   FrameHeader h{major, minor, static_cast<u8>(M::kId), flags, seq, 0};
+  if (n == 0) return encode_frame(h, nullptr, 0, out, capacity);  // a message without fields
   return encode_frame(h, payload.data(), static_cast<std::size_t>(n), out, capacity);
 }
 
@@ -87,20 +88,26 @@ class FrameReader {
   }
 
   /// Frames and messages: decodes each accepted frame's payload and calls
-  /// on_message(const FrameHeader&, const M&) with the typed message, or on_reject(Reject) with
-  /// the frame-level or message-level reason (unknown_message, short_payload, bad_field).
+  /// on_message(const FrameHeader&, const M&) with the typed message, or on_reject with the
+  /// frame-level or message-level reason (unknown_message, short_payload, bad_field). on_reject
+  /// takes (Reject) or (Reject, const FrameHeader*); the header is given for message-level
+  /// rejects (so a device can answer with Nak) and is nullptr for frame-level ones.
   template <class OnMessage, class OnReject>
   void feed_messages(const u8* data, std::size_t size, OnMessage&& on_message,
                      OnReject&& on_reject) {
+    auto reject = [&](Reject r, const FrameHeader* h) {
+      if constexpr (std::is_invocable_v<OnReject&, Reject, const FrameHeader*>) on_reject(r, h);
+      else on_reject(r);
+    };
     feed_frames(
         data, size,
         [&](const Frame& f) {
           const Reject r = decode_message(f.header.id, f.payload, f.header.payload_len,
                                           [&](const auto& m) { on_message(f.header, m); });
           counters_.count(r);
-          if (r != Reject::ok) on_reject(r);
+          if (r != Reject::ok) reject(r, &f.header);
         },
-        on_reject);
+        [&](Reject r) { reject(r, nullptr); });
   }
 
   const RejectCounters& counters() const { return counters_; }

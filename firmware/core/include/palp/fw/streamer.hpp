@@ -52,6 +52,8 @@ class Streamer {
   /// Tick side (call from the control tick): whether this tick takes a sample, and its index.
   /// Advances the decimation counter; call exactly once per tick while running.
   bool sample_due(std::uint32_t& index);
+  /// Tick side: the index the next sample taken will have.
+  std::uint32_t next_index() const { return next_index_; }
 
   /// Thread side: a sample arrives from the ISR queue.
   void accept(const IndexedSample& s);
