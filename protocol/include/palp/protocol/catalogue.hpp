@@ -179,7 +179,7 @@
   M(LoadMultisine, 0x24, H2D, 1, Ack, "Load a periodic multisine.")                            \
   M(LoadContactWatch, 0x25, H2D, 1, Ack, "Load a contact watch.")                              \
   M(ProgramStart, 0x28, H2D, 1, Ack, "Start the loaded program.")                              \
-  M(ProgramStop, 0x29, H2D, 1, Ack, "Stop the running program; current ramps to zero.")        \
+  M(ProgramStop, 0x29, H2D, 1, Ack, "Stop the running program; the set-point goes to 0 A at once.")        \
   M(GetProgramStatus, 0x2A, H2D, 1, ProgramStatus, "Read the program status.")                 \
   M(ProgramStatus, 0x2B, D2H, 1, None, "Where the program is.")                                \
   M(StreamConfigure, 0x30, H2D, 1, StreamConfig, "Choose channels, decimation and batch size.") \

@@ -1,0 +1,66 @@
+// Waveform primitives for the control tick: phases as u32 fractions of a turn, and sine and
+// cosine from a small table with linear interpolation. Cheap enough to run hundreds of times per
+// tick on a Cortex-M4F: one table lookup is ~10 instructions, no division, no libm.
+//
+// Phase: a u32 p is the angle p / 2^32 turns (so it wraps exactly, like the multisine phases of
+// protocol/multisine.hpp). A tone of f_Hz at control rate R advances by phase_increment(f, R) =
+// round(f / R * 2^32) per tick; the realised frequency is increment * R / 2^32, within
+// R / 2^33 of f (2.3 uHz at 20 kHz, 4.7 uHz at 40 kHz). Programs compute the phase of tick k as
+// k * increment (mod 2^32): exact, so nothing accumulates however long a program runs.
+//
+// Table: kSineTableSize = 1024 samples of one turn (plus one guard sample), 4100 bytes of const
+// data, evaluated at compile time in double and rounded to float. Interpolation between two
+// samples h = 2 pi / 1024 apart is off by at most h^2 / 8 = 4.71e-6 (times the amplitude), plus
+// float rounding (< 2.5e-7): kSineMaxError = 5e-6 is the stated worst case. For 0.1 A that is
+// 0.5 uA, far below the 0.2 mA step of the i_cmd stream channel.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace palp::fw {
+
+inline constexpr std::uint32_t kSineTableBits = 10;
+inline constexpr std::uint32_t kSineTableSize = 1u << kSineTableBits;  ///< samples per turn
+/// Worst-case |sin_turns(p) - sin(2 pi p / 2^32)| over every u32 phase p.
+inline constexpr float kSineMaxError = 5.0e-6f;
+
+inline constexpr std::uint32_t kQuarterTurn = 1u << 30;
+inline constexpr std::uint32_t kHalfTurn = 1u << 31;
+
+namespace detail {
+/// sin(2 pi k / kSineTableSize) for k = 0 ... kSineTableSize (the last equals the first, so the
+/// interpolation never wraps its index). Defined in waveform.cpp, const (flash on the MCU).
+extern const std::array<float, kSineTableSize + 1> kSineTable;
+inline constexpr std::uint32_t kFractionBits = 32 - kSineTableBits;
+inline constexpr float kFractionScale = 1.0f / static_cast<float>(1u << kFractionBits);
+}  // namespace detail
+
+/// sin(2 pi phase / 2^32), |error| <= kSineMaxError.
+inline float sin_turns(std::uint32_t phase) {
+  const std::uint32_t index = phase >> detail::kFractionBits;
+  const float fraction =
+      static_cast<float>(phase & ((1u << detail::kFractionBits) - 1u)) * detail::kFractionScale;
+  const float a = detail::kSineTable[index];
+  const float b = detail::kSineTable[index + 1];
+  return a + (b - a) * fraction;
+}
+
+/// cos(2 pi phase / 2^32), |error| <= kSineMaxError.
+inline float cos_turns(std::uint32_t phase) { return sin_turns(phase + kQuarterTurn); }
+
+/// round(frequency_Hz / rate_Hz * 2^32): the per-tick phase increment of a tone. For
+/// 0 <= frequency_Hz < rate_Hz / 2 (the programs allow at most 2000 Hz at 20 kHz). Load-time
+/// code (double arithmetic; reproducible bit for bit on any IEEE-754 machine).
+std::uint32_t phase_increment(float frequency_Hz, std::uint32_t rate_Hz);
+
+/// The same increment with 32 more fraction bits, round(frequency_Hz / rate_Hz * 2^64) (to the
+/// 53 bits of a double): for frequency grids whose lines must not accumulate rounding.
+std::uint64_t phase_increment_fine(float frequency_Hz, std::uint32_t rate_Hz);
+
+/// The u32 increment nearest a fine one: (fine + 2^31) >> 32.
+constexpr std::uint32_t coarse_increment(std::uint64_t fine) {
+  return static_cast<std::uint32_t>((fine + (1ull << 31)) >> 32);
+}
+
+}  // namespace palp::fw

@@ -1,0 +1,263 @@
+// Controller: the host's requests. Every request is answered with its catalogue reply, Ack or
+// Nak (SPEC.md §6.2); every valid request feeds the heartbeat watchdog.
+#include <type_traits>
+
+#include "palp/fw/controller.hpp"
+
+namespace palp::fw {
+
+namespace {
+template <class M, class... Ms>
+constexpr bool is_one_of = (std::is_same_v<M, Ms> || ...);
+
+constexpr bool is_frozen(proto::MessageId id) { return proto::is_frozen_id(static_cast<std::uint8_t>(id)); }
+}  // namespace
+
+void Controller::receive(const std::uint8_t* data, std::size_t size,
+                         std::uint64_t watchdog_now_us) {
+  reader_.feed_messages(
+      data, size,
+      [&](const proto::FrameHeader& h, const auto& m) { dispatch(h, m, watchdog_now_us); },
+      [&](proto::Reject r, const proto::FrameHeader* h) {
+        if (h == nullptr) return;  // frame-level: no header to answer (SPEC.md §4.5)
+        nak(*h, r == proto::Reject::unknown_message ? proto::ErrorCode::unknown_message
+                                                    : proto::ErrorCode::bad_payload);
+      });
+}
+
+void Controller::ack(const proto::FrameHeader& request) {
+  proto::Ack a;
+  a.request_id = request.id;
+  reply(request, a);
+}
+
+void Controller::nak(const proto::FrameHeader& request, proto::ErrorCode error,
+                     std::uint8_t field_index, std::int32_t detail) {
+  proto::Nak n;
+  n.request_id = request.id;
+  n.error = error;
+  n.field_index = field_index;
+  n.detail = detail;
+  reply(request, n);
+}
+
+proto::DeviceInfo Controller::device_info() const {
+  proto::DeviceInfo d;
+  d.protocol_major = identity_.protocol.major;
+  d.protocol_minor = identity_.protocol.minor;
+  d.schema_hash = identity_.protocol.schema_hash;
+  d.fw_major = identity_.fw_major;
+  d.fw_minor = identity_.fw_minor;
+  d.fw_patch = identity_.fw_patch;
+  d.git_hash = identity_.git_hash;
+  d.board = identity_.board;
+  d.serial = identity_.serial;
+  d.capabilities = identity_.capabilities;
+  d.max_current_A = 4.0f;
+  d.control_rate_Hz = params_.control_rate_Hz;
+  d.max_stream_rate_Hz = Streamer::kMaxRate_Hz;
+  d.heartbeat_timeout_ms = params_.heartbeat_timeout_ms;
+  d.max_payload = static_cast<std::uint16_t>(proto::kMaxPayload);
+  d.state = host_incompatible_       ? proto::DeviceState::incompatible
+            : safety_.tripped()      ? proto::DeviceState::faulted
+            : programs_.running()    ? proto::DeviceState::running
+                                     : proto::DeviceState::idle;
+  return d;
+}
+
+proto::Status Controller::status() const {
+  proto::Status s;
+  s.device_time_us = device_time_us();
+  s.state = device_info().state;
+  s.fault = safety_.fault();
+  s.program_kind = programs_.kind();
+  s.program_state = programs_.state();
+  s.i_cmd_A = i_set_A_;
+  s.i_A = i_meas_A_;
+  s.encoder_count = encoder_.position_counts();
+  s.i2t_fraction = safety_.i2t_fraction();
+  s.streaming = streamer_.running() ? 1 : 0;
+  s.status_bits = status_bits();
+  return s;
+}
+
+void Controller::apply_params(const proto::Params& p) {
+  params_ = p;
+  safety_.configure(p);
+  loop_.set_supply_V(p.supply_V);
+}
+
+void Controller::apply_calibration(const CalibrationData& c) {
+  calibration_ = c;
+  PressureCalibration pc;
+  pc.offset_Pa = c.pressure_offset_Pa;
+  pc.gain = c.pressure_gain;
+  pressure_.set_calibration(pc);
+}
+
+CalibrationStatus Controller::load_calibration_block(const std::uint8_t* data, std::size_t size) {
+  const CalibrationLoad l = load_calibration({data, size});
+  if (l.status == CalibrationStatus::ok) apply_calibration(l.data);
+  return l.status;
+}
+
+template <class M>
+void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t wd_now_us) {
+  using namespace proto;
+  safety_.feed(wd_now_us);
+
+  if constexpr (M::kDirection == Direction::D2H) {
+    nak(h, ErrorCode::wrong_direction);
+    return;
+  } else {
+    if (host_incompatible_ && !is_frozen(M::kId) && !std::is_same_v<M, Hello>) {
+      nak(h, ErrorCode::incompatible_host);
+      return;
+    }
+    std::uint8_t field = 255;
+
+    if constexpr (std::is_same_v<M, Hello>) {
+      const Verdict v = judge({m.host_major, m.host_minor, m.host_schema_hash}, identity_.protocol);
+      host_incompatible_ = v.compatibility == Compatibility::incompatible;
+      reply(h, device_info());
+    } else if constexpr (std::is_same_v<M, GetDeviceInfo>) {
+      reply(h, device_info());
+    } else if constexpr (std::is_same_v<M, EnterBootloader>) {
+      if (m.magic != 0x544F4F42u) return nak(h, ErrorCode::bad_magic, 0);
+      if (programs_.running()) return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
+      bootloader_requested_ = true;
+      ack(h);
+    } else if constexpr (std::is_same_v<M, Ping>) {
+      Pong p;
+      p.nonce = m.nonce;
+      p.host_time_us = m.host_time_us;
+      p.device_time_us = device_time_us();
+      reply(h, p);
+    } else if constexpr (std::is_same_v<M, Heartbeat>) {
+      ack(h);
+    } else if constexpr (std::is_same_v<M, GetStatus>) {
+      reply(h, status());
+    } else if constexpr (std::is_same_v<M, GetHealth>) {
+      reply(h, health());
+    } else if constexpr (std::is_same_v<M, GetParams>) {
+      reply(h, params_);
+    } else if constexpr (std::is_same_v<M, SetParams>) {
+      const int bad = m.first_out_of_range();
+      if (bad >= 0) return nak(h, ErrorCode::out_of_range, static_cast<std::uint8_t>(bad));
+      if (m.control_rate_Hz != 20000 && m.control_rate_Hz != 40000)
+        return nak(h, ErrorCode::out_of_range, 7);
+      if (m.travel_min_counts >= m.travel_max_counts) return nak(h, ErrorCode::out_of_range, 4);
+      if (programs_.running() || streamer_.running())
+        return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
+      Params p;
+      p.current_clamp_A = m.current_clamp_A;
+      p.i2t_continuous_A = m.i2t_continuous_A;
+      p.i2t_limit_A2s = m.i2t_limit_A2s;
+      p.i2t_tau_s = m.i2t_tau_s;
+      p.travel_min_counts = m.travel_min_counts;
+      p.travel_max_counts = m.travel_max_counts;
+      p.heartbeat_timeout_ms = m.heartbeat_timeout_ms;
+      p.control_rate_Hz = m.control_rate_Hz;
+      p.supply_V = m.supply_V;
+      p.contact_output = m.contact_output;
+      p.contact_output_hold_ms = m.contact_output_hold_ms;
+      const std::uint32_t old_rate = params_.control_rate_Hz;
+      apply_params(p);
+      if (p.control_rate_Hz != old_rate) {
+        // keep the stream's sample rate: scale its decimation with the tick rate
+        StreamConfigure sc;
+        sc.channels = streamer_.config().channels;
+        sc.batch_samples = streamer_.config().batch_samples;
+        sc.decimation = static_cast<std::uint16_t>(
+            static_cast<std::uint32_t>(streamer_.config().decimation) * p.control_rate_Hz / old_rate);
+        StreamConfig ignored;
+        streamer_.configure(sc, p.control_rate_Hz, ignored, field);
+        pressure_.set_decimation(streamer_.config().decimation);
+      }
+      reply(h, params_);
+    } else if constexpr (std::is_same_v<M, GetCalibration>) {
+      reply(h, to_proto(calibration_));
+    } else if constexpr (std::is_same_v<M, SetCalibration>) {
+      Calibration as_reply;
+      as_reply.layout_version = m.layout_version;
+      as_reply.kf_position_counts = m.kf_position_counts;
+      as_reply.kf_N_per_A = m.kf_N_per_A;
+      as_reply.current_offset_A = m.current_offset_A;
+      as_reply.current_gain = m.current_gain;
+      as_reply.pressure_offset_Pa = m.pressure_offset_Pa;
+      as_reply.pressure_gain = m.pressure_gain;
+      as_reply.spring_k_N_per_m = m.spring_k_N_per_m;
+      as_reply.stroke_origin_counts = m.stroke_origin_counts;
+      as_reply.stroke_origin_valid = m.stroke_origin_valid;
+      CalibrationData c;
+      const int bad = from_proto(as_reply, c);
+      if (bad >= 0) return nak(h, ErrorCode::calibration_invalid, static_cast<std::uint8_t>(bad));
+      apply_calibration(c);
+      reply(h, to_proto(calibration_));
+    } else if constexpr (std::is_same_v<M, CommitCalibration>) {
+      committed_ = serialize_calibration(calibration_);
+      ++commits_;
+      ack(h);
+    } else if constexpr (is_one_of<M, LoadHold, LoadRamp, LoadSine, LoadSweep, LoadMultisine,
+                                   LoadContactWatch>) {
+      const ErrorCode e = programs_.load(m, params_.control_rate_Hz, field);
+      if (e != ErrorCode::ok) return nak(h, e, field);
+      program_rate_Hz_ = params_.control_rate_Hz;
+      ack(h);
+    } else if constexpr (std::is_same_v<M, ProgramStart>) {
+      if (safety_.tripped())
+        return nak(h, ErrorCode::faulted, 255, static_cast<std::int32_t>(safety_.fault()));
+      // a program is timed in ticks of the rate it was loaded for: after a rate change, reload
+      if (program_rate_Hz_ != params_.control_rate_Hz) return nak(h, ErrorCode::no_program, 255, 1);
+      const ErrorCode e = programs_.start(tick_, encoder_.position_counts());
+      if (e != ErrorCode::ok)
+        return nak(h, e, 255, e == ErrorCode::busy ? static_cast<std::int32_t>(programs_.kind()) : 0);
+      loop_.reset();
+      ack(h);
+    } else if constexpr (std::is_same_v<M, ProgramStop>) {
+      const ProgramKind kind = programs_.kind();
+      if (programs_.stop(tick_)) {
+        TickEvent f;
+        f.kind = TickEvent::Kind::finished;
+        f.tick = tick_;
+        f.end = ProgramEnd::stopped_by_host;
+        f.program = kind;
+        f.repetitions = programs_.repetitions_done();
+        ack(h);
+        emit_event(f);
+        return;
+      }
+      ack(h);
+    } else if constexpr (std::is_same_v<M, GetProgramStatus>) {
+      reply(h, programs_.status(tick_));
+    } else if constexpr (std::is_same_v<M, StreamConfigure>) {
+      if (streamer_.running()) return nak(h, ErrorCode::busy);
+      StreamConfig c;
+      const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field);
+      if (e != ErrorCode::ok) return nak(h, e, field);
+      pressure_.set_decimation(m.decimation);
+      reply(h, c);
+    } else if constexpr (std::is_same_v<M, StreamStart>) {
+      pressure_.restart();
+      streamer_.start(tick_);
+      ack(h);
+    } else if constexpr (std::is_same_v<M, StreamStop>) {
+      streamer_.stop();
+      ack(h);
+    } else if constexpr (std::is_same_v<M, FaultClear>) {
+      switch (safety_.clear(wd_now_us)) {
+        case ClearResult::cleared:
+        case ClearResult::not_latched:
+          ack(h);
+          break;
+        case ClearResult::cause_persists:
+          nak(h, ErrorCode::fault_persists, 255, static_cast<std::int32_t>(safety_.fault()));
+          break;
+      }
+    } else {
+      static_assert(sizeof(M) == 0, "a host-to-device message without a handler");
+    }
+  }
+}
+
+}  // namespace palp::fw

@@ -1,0 +1,276 @@
+// The controller end to end at the protocol level: a host's frames in, the device's frames out,
+// with an exact RL coil on the other side of the tick. Virtual control time and a separate
+// watchdog clock, as on hardware.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "palp/fw/controller.hpp"
+#include "palp/protocol/text.hpp"
+
+namespace palp::fw {
+namespace {
+
+using namespace palp::proto;
+
+struct Received {
+  FrameHeader header;
+  std::string name;
+  std::vector<u8> payload;
+};
+
+class Bench {
+ public:
+  Bench() : c_(identity()) {}
+
+  static DeviceIdentity identity() {
+    DeviceIdentity id;
+    id.board = "test-bench";
+    id.serial = "TB-1";
+    id.git_hash = "abc1234";
+    return id;
+  }
+
+  template <class M>
+  void send(const M& m, u16 seq = 1, u8 major = kProtocolMajor) {
+    std::vector<u8> w(kMaxWireFrame);
+    w.resize(encode_message(m, seq, 0, w.data(), w.size(), major));
+    c_.receive(w.data(), w.size(), wd_us_);
+  }
+
+  // One control tick against an exact RL coil (5.8 ohm, 2.07 mH), then the main loop.
+  void run_ticks(int n) {
+    for (int k = 0; k < n; ++k) {
+      TickInputs in;
+      in.i_sense_A = static_cast<float>(i_A_);
+      in.encoder_timer = static_cast<std::uint16_t>(encoder_ + encoder_per_tick_ * static_cast<int>(c_.ticks()));
+      in.watchdog_now_us = wd_us_;
+      TickOutputs out;
+      c_.tick(in, out);
+      const double dt = 1.0 / c_.control_rate_Hz();
+      const double a = std::exp(-5.8 * dt / 2.07e-3);
+      i_A_ = i_A_ * a + out.v_coil_V / 5.8 * (1 - a);
+      last_out_ = out;
+      if (k % 8 == 7) pump();
+    }
+    pump();
+  }
+
+  void pump() {
+    c_.service();
+    u8 buf[4096];
+    std::size_t n;
+    while ((n = c_.transmit(buf, sizeof buf)) > 0) {
+      host_.feed_messages(
+          buf, n,
+          [&](const FrameHeader& h, const auto& m) {
+            std::vector<u8> p(kMaxPayload);
+            p.resize(static_cast<std::size_t>(encode_payload(m, p.data(), p.size())));
+            got_.push_back({h, m.kName, p});
+          },
+          [&](Reject r) { ADD_FAILURE() << "device sent a bad frame: " << reject_name(r); });
+    }
+  }
+
+  template <class M>
+  std::vector<M> all() {
+    std::vector<M> out;
+    for (const Received& r : got_) {
+      if (r.name != M::kName) continue;
+      M m;
+      EXPECT_EQ(decode_payload(r.payload.data(), r.payload.size(), m), Reject::ok);
+      out.push_back(m);
+    }
+    return out;
+  }
+  template <class M>
+  M last() {
+    auto v = all<M>();
+    EXPECT_FALSE(v.empty()) << "no " << M::kName << " received";
+    return v.empty() ? M{} : v.back();
+  }
+  const Received& last_frame() const { return got_.back(); }
+  void clear() { got_.clear(); }
+
+  Controller c_;
+  double i_A_ = 0.0;
+  int encoder_ = 0;
+  int encoder_per_tick_ = 0;
+  std::uint64_t wd_us_ = 1'000'000;
+  TickOutputs last_out_{};
+  FrameReader host_;
+  std::vector<Received> got_;
+};
+
+TEST(Controller, HelloFromThisBuildIsAnsweredWithDeviceInfoAndTheSameSeq) {
+  Bench b;
+  b.send(Hello{kProtocolMajor, kProtocolMinor, kSchemaHash, "test"}, 77);
+  b.pump();
+  ASSERT_FALSE(b.got_.empty());
+  EXPECT_EQ(b.last_frame().header.seq, 77);
+  EXPECT_EQ(b.last_frame().header.flags, kFlagResponse);
+  const DeviceInfo d = b.last<DeviceInfo>();
+  EXPECT_EQ(d.state, DeviceState::idle);
+  EXPECT_EQ(d.schema_hash, kSchemaHash);
+  EXPECT_EQ(std::string(d.board.bytes.data()), "test-bench");
+  EXPECT_EQ(d.heartbeat_timeout_ms, 500u);
+}
+
+TEST(Controller, AfterAnIncompatibleHelloOnlyFrozenRequestsAreServed) {
+  Bench b;
+  b.send(Hello{kProtocolMajor, kProtocolMinor, kSchemaHash ^ 1u, "other build"});
+  b.send(GetStatus{}, 2);
+  b.send(GetDeviceInfo{}, 3);
+  b.send(EnterBootloader{0x544F4F42u}, 4);
+  b.pump();
+  EXPECT_EQ(b.all<DeviceInfo>().front().state, DeviceState::incompatible);
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::incompatible_host);
+  EXPECT_EQ(b.all<DeviceInfo>().size(), 2u);
+  EXPECT_EQ(b.last<Ack>().request_id, static_cast<u8>(MessageId::EnterBootloader));
+  EXPECT_TRUE(b.c_.bootloader_requested());
+  // a compatible Hello restores the session
+  b.send(Hello{kProtocolMajor, kProtocolMinor, kSchemaHash, "this build"}, 5);
+  b.send(GetStatus{}, 6);
+  b.pump();
+  EXPECT_EQ(b.all<Status>().size(), 1u);
+}
+
+TEST(Controller, AHostOfAnotherMajorCanStillIdentifyTheDevice) {
+  Bench b;
+  b.send(GetDeviceInfo{}, 9, kProtocolMajor + 1);
+  b.send(Ping{1, 2}, 10, kProtocolMajor + 1);  // not frozen: rejected at frame level, no reply
+  b.pump();
+  ASSERT_EQ(b.got_.size(), 1u);
+  EXPECT_EQ(b.got_[0].name, "DeviceInfo");
+  EXPECT_EQ(b.c_.health().rx_unsupported_major, 1u);
+}
+
+TEST(Controller, PongCarriesTheExactDeviceTime) {
+  Bench b;
+  b.run_ticks(2000);  // 100 ms at 20 kHz
+  b.send(Ping{42, 123456}, 3);
+  b.pump();
+  const Pong p = b.last<Pong>();
+  EXPECT_EQ(p.nonce, 42u);
+  EXPECT_EQ(p.host_time_us, 123456u);
+  EXPECT_EQ(p.device_time_us, 100000u);
+}
+
+TEST(Controller, BadRequestsAreRefusedWithTheirReasonAndField) {
+  Bench b;
+  SetParams p;
+  p.heartbeat_timeout_ms = 20;
+  b.send(p, 4);
+  b.pump();
+  Nak n = b.last<Nak>();
+  EXPECT_EQ(n.error, ErrorCode::out_of_range);
+  EXPECT_EQ(n.field_index, 6);
+  EXPECT_EQ(b.last_frame().header.seq, 4);
+
+  p.heartbeat_timeout_ms = 500;
+  p.control_rate_Hz = 30000;
+  b.send(p, 5);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().field_index, 7);
+
+  b.send(Pong{}, 6);  // a device-to-host message
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::wrong_direction);
+
+  std::vector<u8> w(kMaxWireFrame);
+  const u8 junk[] = {1, 2};
+  w.resize(encode_frame(FrameHeader{kProtocolMajor, kProtocolMinor, 0xEE, 0, 7, 0}, junk, 2,
+                        w.data(), w.size()));
+  b.c_.receive(w.data(), w.size(), b.wd_us_);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::unknown_message);
+  EXPECT_EQ(b.last_frame().header.seq, 7);
+  EXPECT_EQ(b.c_.health().rx_unknown_message, 1u);
+}
+
+TEST(Controller, AHoldProgramDrivesTheCoilToItsCurrent) {
+  Bench b;
+  b.send(LoadHold{1.0f, 0.0f}, 1);
+  b.send(ProgramStart{}, 2);
+  b.run_ticks(200);  // 10 ms: the loop settles in about 0.5 ms
+  EXPECT_NEAR(b.i_A_, 1.0, 0.01);
+  b.send(GetStatus{}, 3);
+  b.pump();
+  const Status s = b.last<Status>();
+  EXPECT_EQ(s.state, DeviceState::running);
+  EXPECT_FLOAT_EQ(s.i_cmd_A, 1.0f);
+  EXPECT_NE(s.status_bits & (1u << static_cast<unsigned>(StatusBit::heartbeat_armed)), 0u);
+}
+
+TEST(Controller, AStaleHostHeartbeatTripsAndZeroesTheCoilInThatTick) {
+  Bench b;
+  b.send(LoadHold{1.0f, 0.0f}, 1);
+  b.send(ProgramStart{}, 2);
+  b.run_ticks(100);
+  b.wd_us_ += 501'000;  // the host went quiet for 501 ms of wall time
+  b.run_ticks(1);
+  EXPECT_EQ(b.last_out_.v_coil_V, 0.0f);
+  EXPECT_EQ(b.last<EventFault>().reason, FaultReason::heartbeat_timeout);
+  EXPECT_EQ(b.last<EventProgramFinished>().end, ProgramEnd::fault);
+  b.send(ProgramStart{}, 3);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::faulted);
+  b.send(FaultClear{}, 4);
+  b.pump();
+  EXPECT_EQ(b.last<Ack>().request_id, static_cast<u8>(MessageId::FaultClear));
+  EXPECT_FALSE(b.c_.faulted());
+}
+
+TEST(Controller, ControlTimeRacingAheadDoesNotTripTheWatchdog) {
+  Bench b;
+  b.send(LoadHold{0.5f, 0.0f}, 1);
+  b.send(ProgramStart{}, 2);
+  b.run_ticks(40000);  // 2 s of control time, no wall time passes
+  EXPECT_FALSE(b.c_.faulted());
+}
+
+TEST(Controller, StreamsEverySampleInOrderWithExactTimes) {
+  Bench b;
+  b.send(StreamConfigure{kAllChannels, 2, 40}, 1);
+  b.send(StreamStart{}, 2);
+  b.run_ticks(4000);  // 200 ms: 2000 samples at 10 kHz
+  b.send(StreamStop{}, 3);
+  b.run_ticks(1);
+  const auto batches = b.all<SampleBatch>();
+  std::uint32_t next = 0;
+  for (const SampleBatch& s : batches) {
+    ASSERT_EQ(s.first_index, next);
+    EXPECT_EQ(check_batch(s), BatchProblem::none);
+    EXPECT_EQ(s.first_time_us, 100u * s.first_index);
+    next += s.sample_count;
+  }
+  EXPECT_EQ(next, 2000u);
+  EXPECT_TRUE(b.all<EventStreamGap>().empty());
+}
+
+TEST(Controller, AContactWatchFiresAtExactlyItsThreshold) {
+  Bench b;
+  b.send(LoadContactWatch{0.5f, 200, 0.0f}, 1);
+  b.send(ProgramStart{}, 2);
+  b.encoder_per_tick_ = 1;  // the coil moves 1 um per tick
+  b.run_ticks(400);
+  const EventContact c = b.last<EventContact>();
+  EXPECT_EQ(c.encoder_count - c.armed_count, 200);
+  EXPECT_EQ(b.last<EventProgramFinished>().end, ProgramEnd::contact);
+}
+
+TEST(Controller, ACorruptedFrameIsCountedAndNotAnswered) {
+  Bench b;
+  std::vector<u8> w(kMaxWireFrame);
+  w.resize(encode_message(Ping{1, 2}, 1, 0, w.data(), w.size()));
+  w[5] ^= 0x10;
+  b.c_.receive(w.data(), w.size(), b.wd_us_);
+  b.pump();
+  EXPECT_TRUE(b.got_.empty());
+  EXPECT_EQ(b.c_.health().rx_bad_crc, 1u);
+}
+
+}  // namespace
+}  // namespace palp::fw
