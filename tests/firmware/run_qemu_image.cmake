@@ -2,7 +2,7 @@
 # with code 0 (the image's semihosting exit) and the image's UART output matches PASS_REGEX.
 #
 #   cmake -DIMAGE=<image.elf> -DPASS_REGEX=<regex> [-DVECTORS_DIR=<dir>] [-DHINT=<text>]
-#         -P run_qemu_image.cmake
+#         [-DICOUNT=ON] -P run_qemu_image.cmake
 #
 # The command line follows reference/qemu-icount.md: semihosting on (exit codes), UART0 on stdio
 # (stdin is /dev/null, so QEMU never touches a terminal), no display, no monitor, and the whole
@@ -36,6 +36,9 @@ endif()
 
 set(command "${TIMEOUT}" 60 "${QEMU}" -M mps2-an386 -display none -monitor none
             -semihosting-config enable=on,target=native -serial stdio -kernel "${IMAGE}")
+if(ICOUNT)  # -DICOUNT=ON: one instruction per ns of virtual time, for instruction counts
+  list(APPEND command -icount shift=0)
+endif()
 list(JOIN command " " command_text)
 message(STATUS "${command_text}")
 

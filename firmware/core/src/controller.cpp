@@ -8,12 +8,18 @@ namespace palp::fw {
 
 namespace {
 
-std::int16_t scaled(float value, double lsb) {
-  const double v = std::round(static_cast<double>(value) / lsb);
-  if (v > 32767.0) return 32767;
-  if (v < -32768.0) return -32768;
+// value / lsb rounded to the nearest i16 and saturated; single precision only, since the
+// Cortex-M4F has no double-precision FPU and this runs in the tick.
+std::int16_t scaled(float value, float per_lsb) {
+  float v = value * per_lsb;
+  if (!(v < 32767.0f)) return v != v ? 0 : 32767;
+  if (!(v > -32768.0f)) return -32768;
+  v += v >= 0.0f ? 0.5f : -0.5f;
   return static_cast<std::int16_t>(v);
 }
+constexpr float kPerCurrentLsb = static_cast<float>(1.0 / proto::kCurrentLsb_A);
+constexpr float kPerPressureLsb = static_cast<float>(1.0 / proto::kPressureLsb_Pa);
+constexpr float kPerVoltageLsb = static_cast<float>(1.0 / proto::kVoltageLsb_V);
 
 constexpr std::uint16_t bit(proto::StatusBit b) {
   return static_cast<std::uint16_t>(1u << static_cast<unsigned>(b));
@@ -127,13 +133,13 @@ void Controller::tick(const TickInputs& in, TickOutputs& out) {
   if (streamer_.sample_due(index)) {
     IndexedSample s;
     s.index = index;
-    s.sample.i_cmd = scaled(i_set_A_, proto::kCurrentLsb_A);
-    s.sample.i_meas = scaled(i_meas_A_, proto::kCurrentLsb_A);
+    s.sample.i_cmd = scaled(i_set_A_, kPerCurrentLsb);
+    s.sample.i_meas = scaled(i_meas_A_, kPerCurrentLsb);
     s.sample.encoder = z;
     const auto& p = pressure_.pressure_Pa();
-    for (std::size_t k = 0; k < 6; ++k) s.sample.pressure[k] = scaled(p[k], proto::kPressureLsb_Pa);
+    for (std::size_t k = 0; k < 6; ++k) s.sample.pressure[k] = scaled(p[k], kPerPressureLsb);
     s.sample.status = status_bits();
-    s.sample.v_cmd = scaled(v_cmd_V_, proto::kVoltageLsb_V);
+    s.sample.v_cmd = scaled(v_cmd_V_, kPerVoltageLsb);
     samples_.push(s);  // a full queue loses the sample; the streamer sees the missing index
   }
   ++tick_;
