@@ -101,6 +101,7 @@ class Controller {
   void set_identity(const DeviceIdentity& identity) { identity_ = identity; }
   const DeviceIdentity& identity() const { return identity_; }
   bool faulted() const { return safety_.tripped(); }
+  proto::FaultReason fault() const { return safety_.fault(); }
   proto::Health health() const;
 
  private:

@@ -1,0 +1,285 @@
+// palp-sim: the probe controller's firmware core and the physical model in virtual time, served
+// over a loopback socket with the device protocol, plus a control channel for the simulator's
+// own knobs (hil/README.md).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "palp/plant/phantom.hpp"
+#include "palp/sim/byte_server.hpp"
+#include "palp/sim/control.hpp"
+#include "palp/sim/plant_link.hpp"
+#include "palp/sim/simulation.hpp"
+
+namespace {
+
+using namespace palp;
+using Clock = std::chrono::steady_clock;
+
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+std::uint64_t wall_us(Clock::time_point t0) {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t0).count());
+}
+
+struct Options {
+  std::string listen = "127.0.0.1";
+  std::uint16_t port = 7070;
+  std::string unix_path;
+  std::uint16_t control_port = 7071;
+  std::string phantom = "none";
+  std::vector<double> mount_mm{0.0, 0.0, 0.0};
+  std::uint64_t seed = 1;
+  std::string pace = "realtime";
+  double hold_timeout_ms = 1000.0;
+  double reaction_latency_ms = 2.0;
+  std::string serial = "SIM-0001";
+};
+
+double pace_factor(const std::string& pace) {
+  std::string error;
+  const auto c = sim::parse_control("pace " + pace, error);
+  if (!c) throw CLI::ValidationError("--pace", error);
+  return std::get<sim::cmd::Pace>(*c).factor;
+}
+
+class Server {
+ public:
+  Server(const Options& o, sim::ByteServer device, sim::ByteServer control)
+      : o_(o), device_(std::move(device)), control_(std::move(control)),
+        pace_(pace_factor(o.pace)) {
+    identity_.board = "palp-sim";
+    identity_.serial = o_.serial.c_str();
+    identity_.git_hash = PALP_GIT_HASH;
+    identity_.capabilities = (1u << static_cast<unsigned>(proto::Capability::pressure)) |
+                             (1u << static_cast<unsigned>(proto::Capability::contact_output)) |
+                             (1u << static_cast<unsigned>(proto::Capability::simulated));
+    sim::SimulationOptions so;
+    so.hold_timeout_ms = o.hold_timeout_ms;
+    so.reaction_latency_ms = o.reaction_latency_ms;
+    sim_ = std::make_unique<sim::Simulation>(identity_, make_plant(o.phantom, o.seed), so);
+    mount(o.mount_mm[0], o.mount_mm[1], o.mount_mm[2]);
+  }
+
+  int run() {
+    t0_ = Clock::now();
+    std::printf("palp-sim listening on %s (device protocol), control on %s\n",
+                device_.address().c_str(), control_.address().c_str());
+    std::fflush(stdout);
+    std::uint64_t virtual_at_sync = 0;
+    Clock::time_point wall_at_sync = Clock::now();
+    while (g_stop == 0) {
+      const bool can_run = device_.has_client() && device_.tx_pending() < kStallBytes;
+      const auto ev = device_.poll(can_run && !sim_->holding() ? 0 : 2);
+      if (ev.connected) {
+        virtual_at_sync = sim_->ticks();
+        wall_at_sync = Clock::now();
+      }
+      const std::vector<std::uint8_t> rx = device_.take_received();
+      if (!rx.empty()) sim_->host_bytes(rx.data(), rx.size(), wall_us(t0_));
+      serve_control();
+      if (can_run) {
+        std::uint32_t chunk = sim_->controller().control_rate_Hz() / 1000;  // 1 ms of virtual time
+        if (pace_ > 0) {
+          // run only as far as wall time allows at this pace
+          const double wall_s = std::chrono::duration<double>(Clock::now() - wall_at_sync).count();
+          const double allowed = wall_s * pace_ * sim_->controller().control_rate_Hz();
+          const double done = static_cast<double>(sim_->ticks() - virtual_at_sync);
+          if (done >= allowed) {
+            chunk = 0;
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+          } else if (allowed - done < chunk) {
+            chunk = static_cast<std::uint32_t>(allowed - done);
+          }
+        }
+        if (chunk > 0) sim_->run(chunk, wall_us(t0_));
+      } else if (!device_.has_client()) {
+        // no host: virtual time stands still
+        virtual_at_sync = sim_->ticks();
+        wall_at_sync = Clock::now();
+      }
+      const std::vector<std::uint8_t> out = sim_->take_device_bytes();
+      if (!out.empty() && device_.has_client() && !device_.send(out.data(), out.size()))
+        pending_.insert(pending_.end(), out.begin(), out.end());
+      if (!pending_.empty() && device_.send(pending_.data(), pending_.size())) pending_.clear();
+      if (!device_.has_client()) pending_.clear();
+    }
+    std::printf("palp-sim: stopped after %.3f s of virtual time\n", sim_->virtual_s());
+    return 0;
+  }
+
+ private:
+  static constexpr std::size_t kStallBytes = 64 * 1024;
+
+  static std::unique_ptr<sim::PlantLink> make_plant(const std::string& phantom,
+                                                    std::uint64_t seed) {
+    return std::make_unique<sim::ModelPlant>(phantom, seed);
+  }
+
+  void mount(double x_mm, double y_mm, double z_mm) {
+    mount_mm_ = {x_mm, y_mm, z_mm};
+    static_cast<sim::ModelPlant&>(sim_->plant()).model().set_mount(x_mm * 1e-3, y_mm * 1e-3,
+                                                                    z_mm * 1e-3);
+  }
+
+  void reply(const std::string& line) {
+    const std::string l = line + "\n";
+    control_.send(reinterpret_cast<const std::uint8_t*>(l.data()), l.size());
+  }
+
+  void serve_control() {
+    control_.poll(0);
+    const std::vector<std::uint8_t> bytes = control_.take_received();
+    control_line_.append(bytes.begin(), bytes.end());
+    std::size_t eol;
+    while ((eol = control_line_.find('\n')) != std::string::npos) {
+      const std::string line = control_line_.substr(0, eol);
+      control_line_.erase(0, eol + 1);
+      std::string error;
+      const auto c = sim::parse_control(line, error);
+      if (!c) {
+        reply("error: " + error);
+        continue;
+      }
+      std::visit([&](const auto& cmd) { apply(cmd); }, *c);
+    }
+    if (control_line_.size() > 4096) {
+      control_line_.clear();
+      reply("error: line longer than 4096 bytes");
+    }
+  }
+
+  void apply(const sim::cmd::Help&) { reply(std::string("ok ") + sim::control_help()); }
+  void apply(const sim::cmd::Status&) {
+    char buf[256];
+    const auto& c = sim_->counters();
+    std::snprintf(buf, sizeof buf,
+                  "ok virtual_s=%.6f ticks=%llu pace=%g client=%d holding=%d phantom=%s "
+                  "frames_out=%llu dropped=%llu corrupted=%llu holds=%llu",
+                  sim_->virtual_s(), static_cast<unsigned long long>(sim_->ticks()), pace_,
+                  device_.has_client() ? 1 : 0, sim_->holding() ? 1 : 0, phantom_.c_str(),
+                  static_cast<unsigned long long>(c.frames_out),
+                  static_cast<unsigned long long>(c.frames_dropped),
+                  static_cast<unsigned long long>(c.frames_corrupted),
+                  static_cast<unsigned long long>(c.holds));
+    reply(buf);
+  }
+  void apply(const sim::cmd::Mount& m) {
+    mount(m.x_mm, m.y_mm, m.z_mm);
+    reply("ok");
+  }
+  void apply(const sim::cmd::Phantom& p) { rebuild_plant(p.name, seed_); }
+  void apply(const sim::cmd::Seed& s) { rebuild_plant(phantom_, s.seed); }
+  void apply(const sim::cmd::Pace& p) {
+    pace_ = p.factor;
+    reply("ok");
+  }
+  void apply(const sim::cmd::DropFrames& d) {
+    sim_->options().drop_every = d.every;
+    reply("ok");
+  }
+  void apply(const sim::cmd::CorruptFrames& d) {
+    sim_->options().corrupt_every = d.every;
+    reply("ok");
+  }
+  void apply(const sim::cmd::Announce& a) {
+    fw::DeviceIdentity id = identity_;
+    if (!a.actual) id.protocol = {a.major, a.minor, a.hash.value_or(proto::kSchemaHash)};
+    sim_->controller().set_identity(id);
+    reply("ok");
+  }
+  void apply(const sim::cmd::ReactionLatency& r) {
+    sim_->options().reaction_latency_ms = r.ms;
+    reply("ok");
+  }
+  void apply(const sim::cmd::HoldTimeout& h) {
+    sim_->options().hold_timeout_ms = h.ms;
+    reply("ok");
+  }
+
+  void rebuild_plant(const std::string& phantom, std::uint64_t seed) {
+    try {
+      sim_->set_plant(make_plant(phantom, seed));
+      phantom_ = phantom;
+      seed_ = seed;
+      mount(mount_mm_[0], mount_mm_[1], mount_mm_[2]);
+      reply("ok");
+    } catch (const std::exception& e) {
+      reply(std::string("error: ") + e.what());
+    }
+  }
+
+  Options o_;
+  sim::ByteServer device_;
+  sim::ByteServer control_;
+  double pace_;
+  fw::DeviceIdentity identity_;
+  std::unique_ptr<sim::Simulation> sim_;
+  std::string phantom_ = o_.phantom;
+  std::uint64_t seed_ = o_.seed;
+  std::array<double, 3> mount_mm_{};
+  std::string control_line_;
+  std::vector<std::uint8_t> pending_;
+  Clock::time_point t0_ = Clock::now();
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"palp-sim: the palp probe controller's firmware core against a physical model, in "
+               "virtual time, served over a loopback socket (hil/README.md)"};
+  app.add_option("--listen-address", o.listen, "IPv4 address to listen on (loopback by default)")
+      ->capture_default_str();
+  app.add_option("--port", o.port, "TCP port of the device protocol (0: pick a free one)")
+      ->capture_default_str();
+  app.add_option("--unix", o.unix_path, "serve the device protocol on this Unix socket instead");
+  app.add_option("--control-port", o.control_port, "TCP port of the control channel (0: free)")
+      ->capture_default_str();
+  app.add_option("--phantom", o.phantom,
+                 "specimen under the probe: none, hollow_1d, solid_1d, insert_1d, pad_2d")
+      ->capture_default_str();
+  app.add_option("--mount-mm", o.mount_mm,
+                 "probe mount x y z in mm: the tip at the stroke origin, phantom frame")
+      ->expected(3);
+  app.add_option("--seed", o.seed, "noise seed (the same seed repeats a run)")->capture_default_str();
+  app.add_option("--pace", o.pace, "realtime, fast, or a factor of real time")->capture_default_str();
+  app.add_option("--hold-timeout-ms", o.hold_timeout_ms,
+                 "wall time a contact event waits for the host's reaction")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--reaction-latency-ms", o.reaction_latency_ms,
+                 "virtual time from an event to the host's reaction")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--serial", o.serial, "serial number the device reports")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGPIPE, SIG_IGN);
+  try {
+    if (o.listen != "127.0.0.1")
+      std::fprintf(stderr, "palp-sim: warning: listening on %s, not only on loopback\n",
+                   o.listen.c_str());
+    pace_factor(o.pace);
+    sim::ByteServer device = o.unix_path.empty() ? sim::ByteServer::tcp(o.listen, o.port)
+                                                 : sim::ByteServer::unix_socket(o.unix_path);
+    sim::ByteServer control = sim::ByteServer::tcp(o.listen, o.control_port);
+    Server server(o, std::move(device), std::move(control));
+    return server.run();
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "palp-sim: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,119 @@
+#include "palp/sim/simulation.hpp"
+
+#include <cmath>
+
+namespace palp::sim {
+
+Simulation::Simulation(const fw::DeviceIdentity& identity, std::unique_ptr<PlantLink> plant,
+                       SimulationOptions options)
+    : controller_(identity), plant_(std::move(plant)), options_(options) {}
+
+double Simulation::virtual_s() const {
+  return static_cast<double>(controller_.ticks()) / controller_.control_rate_Hz();
+}
+
+void Simulation::host_bytes(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us) {
+  last_wall_us_ = wall_us;
+  if (hold_.active || hold_.releasing) {
+    hold_.pending.insert(hold_.pending.end(), data, data + size);
+    if (hold_.active) {
+      // the host reacted: its bytes land reaction_latency after the event, in virtual time
+      hold_.active = false;
+      hold_.releasing = true;
+      hold_.release_tick =
+          controller_.ticks() + static_cast<std::uint64_t>(std::llround(
+                                    options_.reaction_latency_ms * 1e-3 * controller_.control_rate_Hz()));
+    }
+    return;
+  }
+  deliver(data, size, wall_us);
+}
+
+void Simulation::deliver(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us) {
+  controller_.receive(data, size, wall_us);
+  collect_device_output();
+}
+
+std::uint32_t Simulation::run(std::uint32_t max_ticks, std::uint64_t wall_us) {
+  last_wall_us_ = wall_us;
+  if (hold_.active) {
+    if (static_cast<double>(wall_us - hold_.since_wall_us) < options_.hold_timeout_ms * 1e3)
+      return 0;
+    hold_.active = false;  // the host did not react in time: go on
+    ++counters_.hold_timeouts;
+  }
+  std::uint32_t ran = 0;
+  while (ran < max_ticks && !hold_.active) {
+    if (hold_.releasing && controller_.ticks() >= hold_.release_tick) {
+      hold_.releasing = false;
+      std::vector<std::uint8_t> bytes;
+      bytes.swap(hold_.pending);
+      deliver(bytes.data(), bytes.size(), wall_us);
+    }
+    tick_once(wall_us);
+    ++ran;
+    if ((controller_.ticks() & 7u) == 0 || ran == max_ticks) {
+      controller_.service();
+      collect_device_output();
+    }
+  }
+  return ran;
+}
+
+void Simulation::tick_once(std::uint64_t wall_us) {
+  fw::TickInputs in;
+  in.i_sense_A = plant_->current_sense_A();
+  in.encoder_timer = static_cast<std::uint16_t>(plant_->encoder_counts());
+  in.pressure_codes = plant_->pressure_codes();
+  in.watchdog_now_us = wall_us;
+  fw::TickOutputs out;
+  controller_.tick(in, out);
+  plant_->step(1.0 / controller_.control_rate_Hz(), out.v_coil_V);
+}
+
+void Simulation::collect_device_output() {
+  std::uint8_t buf[2048];
+  std::size_t n;
+  while ((n = controller_.transmit(buf, sizeof buf)) > 0) {
+    for (std::size_t k = 0; k < n; ++k) {
+      frame_.push_back(buf[k]);
+      if (buf[k] != 0) continue;
+      // one whole frame (ending with its delimiter): fault injection, holds
+      ++counters_.frames_out;
+      bool drop = options_.drop_every != 0 && counters_.frames_out % options_.drop_every == 0;
+      if (!drop && options_.corrupt_every != 0 &&
+          counters_.frames_out % options_.corrupt_every == 0 && frame_.size() > 2) {
+        std::uint8_t& b = frame_[frame_.size() / 2];
+        b = static_cast<std::uint8_t>(b ^ 0x04);
+        if (b == 0) b = 0x04;  // never create a delimiter
+        ++counters_.frames_corrupted;
+      }
+      if (drop) {
+        ++counters_.frames_dropped;
+      } else {
+        // a contact event holds virtual time until the host reacts
+        proto::FrameReader peek;
+        peek.feed(
+            frame_.data(), frame_.size(),
+            [&](const proto::Frame& f) {
+              if (f.header.id == static_cast<std::uint8_t>(proto::MessageId::EventContact)) {
+                hold_.active = true;
+                hold_.since_wall_us = last_wall_us_;
+                ++counters_.holds;
+              }
+            },
+            [](proto::Reject) {});
+        out_.insert(out_.end(), frame_.begin(), frame_.end());
+      }
+      frame_.clear();
+    }
+  }
+}
+
+std::vector<std::uint8_t> Simulation::take_device_bytes() {
+  std::vector<std::uint8_t> out;
+  out.swap(out_);
+  return out;
+}
+
+}  // namespace palp::sim

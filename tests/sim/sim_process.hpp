@@ -1,0 +1,152 @@
+// Starts palp-sim as a child process on ephemeral loopback ports and talks to it over real
+// sockets: the device protocol on one, the control channel on the other.
+#pragma once
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "palp/protocol/frame.hpp"
+#include "palp/protocol/schema.hpp"
+
+namespace palp::sim::test {
+
+class SimProcess {
+ public:
+  explicit SimProcess(std::vector<std::string> extra_args = {}) {
+    int out[2];
+    if (::pipe(out) != 0) return;
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(out[1], 1);
+      ::close(out[0]);
+      std::vector<std::string> args = {PALP_SIM_BINARY, "--port", "0", "--control-port", "0",
+                                       "--pace", "fast"};
+      args.insert(args.end(), extra_args.begin(), extra_args.end());
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      std::_Exit(127);
+    }
+    ::close(out[1]);
+    // "palp-sim listening on tcp://127.0.0.1:P (device protocol), control on tcp://127.0.0.1:C"
+    std::string line;
+    pollfd p{out[0], POLLIN, 0};
+    while (line.find('\n') == std::string::npos && ::poll(&p, 1, 5000) == 1) {
+      char c[256];
+      const ssize_t n = ::read(out[0], c, sizeof c);
+      if (n <= 0) break;
+      line.append(c, static_cast<std::size_t>(n));
+    }
+    ::close(out[0]);
+    banner_ = line;
+    unsigned dp = 0, cp = 0;
+    if (std::sscanf(line.c_str(), "palp-sim listening on tcp://127.0.0.1:%u (device protocol), "
+                                  "control on tcp://127.0.0.1:%u", &dp, &cp) == 2) {
+      device_ = connect_to(static_cast<std::uint16_t>(dp));
+      control_ = connect_to(static_cast<std::uint16_t>(cp));
+    }
+  }
+  ~SimProcess() {
+    if (device_ >= 0) ::close(device_);
+    if (control_ >= 0) ::close(control_);
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+    }
+  }
+  bool ok() const { return device_ >= 0 && control_ >= 0; }
+  const std::string& banner() const { return banner_; }
+  bool alive() const { return pid_ > 0 && ::waitpid(pid_, nullptr, WNOHANG) == 0; }
+
+  void send_bytes(const std::vector<proto::u8>& bytes) {
+    std::size_t off = 0;
+    while (off < bytes.size()) {
+      const ssize_t n = ::write(device_, bytes.data() + off, bytes.size() - off);
+      if (n <= 0) return;
+      off += static_cast<std::size_t>(n);
+    }
+  }
+  template <class M>
+  void send(const M& m, proto::u16 seq) {
+    std::vector<proto::u8> w(proto::kMaxWireFrame);
+    w.resize(proto::encode_message(m, seq, 0, w.data(), w.size()));
+    send_bytes(w);
+  }
+
+  /// Reads device frames until one of type M with the response flag and this seq arrives (or
+  /// timeout_ms of wall time); returns whether it did, with its value.
+  template <class M>
+  bool await(proto::u16 seq, M& out, int timeout_ms = 5000) {
+    bool found = false;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (!found && std::chrono::steady_clock::now() < end) {
+      pollfd p{device_, POLLIN, 0};
+      if (::poll(&p, 1, 50) != 1) continue;
+      proto::u8 buf[4096];
+      const ssize_t n = ::read(device_, buf, sizeof buf);
+      if (n <= 0) return false;
+      reader_.feed_messages(
+          buf, static_cast<std::size_t>(n),
+          [&](const proto::FrameHeader& h, const auto& m) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, M>) {
+              if (!found && h.seq == seq && (h.flags & proto::kFlagResponse)) {
+                out = m;
+                found = true;
+              }
+            }
+          },
+          [](proto::Reject) {});
+    }
+    return found;
+  }
+
+  std::string control(const std::string& line) {
+    const std::string l = line + "\n";
+    if (::write(control_, l.data(), l.size()) != static_cast<ssize_t>(l.size())) return "";
+    std::string reply;
+    pollfd p{control_, POLLIN, 0};
+    while (reply.find('\n') == std::string::npos && ::poll(&p, 1, 5000) == 1) {
+      char c[512];
+      const ssize_t n = ::read(control_, c, sizeof c);
+      if (n <= 0) break;
+      reply.append(c, static_cast<std::size_t>(n));
+    }
+    if (!reply.empty() && reply.back() == '\n') reply.pop_back();
+    return reply;
+  }
+
+ private:
+  static int connect_to(std::uint16_t port) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+      ::close(fd);
+      return -1;
+    }
+    return fd;
+  }
+
+  pid_t pid_ = -1;
+  int device_ = -1;
+  int control_ = -1;
+  std::string banner_;
+  proto::FrameReader reader_;
+};
+
+}  // namespace palp::sim::test

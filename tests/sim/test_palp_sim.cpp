@@ -1,0 +1,86 @@
+// palp-sim as a process, over real loopback sockets: the device protocol, malformed input, the
+// control channel, announced versions and the firmware core driving the physical model.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sim_process.hpp"
+
+namespace palp::sim::test {
+namespace {
+
+using namespace palp::proto;
+
+TEST(PalpSim, AnswersTheHandshakeOverTcpAsAPalpSimDevice) {
+  SimProcess sim;
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  sim.send(Hello{kProtocolMajor, kProtocolMinor, kSchemaHash, "test"}, 1);
+  DeviceInfo d;
+  ASSERT_TRUE(sim.await(1, d));
+  EXPECT_EQ(std::string(d.board.bytes.data()), "palp-sim");
+  EXPECT_EQ(d.schema_hash, kSchemaHash);
+  EXPECT_EQ(d.state, DeviceState::idle);
+  EXPECT_NE(d.capabilities & (1u << static_cast<unsigned>(Capability::simulated)), 0u);
+}
+
+TEST(PalpSim, MalformedBytesNeitherCrashNorWedgeIt) {
+  SimProcess sim;
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  std::mt19937 rng(99);
+  std::vector<u8> junk(256 * 1024);
+  for (auto& b : junk) b = static_cast<u8>(rng() % 7 == 0 ? 0 : rng());
+  sim.send_bytes(junk);
+  sim.send_bytes({0x00});
+  sim.send(Ping{7, 8}, 42);
+  Pong p;
+  ASSERT_TRUE(sim.await(42, p)) << "no Pong after 256 KiB of garbage";
+  EXPECT_EQ(p.nonce, 7u);
+  EXPECT_TRUE(sim.alive());
+  sim.send(GetHealth{}, 43);
+  Health h;
+  ASSERT_TRUE(sim.await(43, h));
+  EXPECT_GT(h.rx_bad_cobs + h.rx_bad_crc + h.rx_truncated + h.rx_oversize, 0u);
+}
+
+TEST(PalpSim, AHoldProgramDrivesTheSimulatedCoil) {
+  SimProcess sim({"--phantom", "none"});
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  sim.send(LoadHold{0.8f, 0.0f}, 1);
+  Ack a;
+  ASSERT_TRUE(sim.await(1, a));
+  sim.send(ProgramStart{}, 2);
+  ASSERT_TRUE(sim.await(2, a));
+  Status s;
+  for (u16 seq = 3; seq < 200; ++seq) {  // until 0.2 s of virtual time have passed
+    sim.send(GetStatus{}, seq);
+    ASSERT_TRUE(sim.await(seq, s));
+    if (s.device_time_us > 200'000) break;
+  }
+  EXPECT_EQ(s.state, DeviceState::running);
+  EXPECT_NEAR(s.i_A, 0.8f, 0.02f);
+  EXPECT_EQ(s.fault, FaultReason::none);
+}
+
+TEST(PalpSim, TheControlChannelAnswersEveryLine) {
+  SimProcess sim;
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  EXPECT_EQ(sim.control("status").rfind("ok virtual_s=", 0), 0u);
+  EXPECT_EQ(sim.control("mount 1 2 3"), "ok");
+  EXPECT_EQ(sim.control("fly"), "error: unknown command 'fly'; try 'help'");
+  EXPECT_EQ(sim.control("phantom no_such_phantom").rfind("error: ", 0), 0u);
+}
+
+TEST(PalpSim, AnnouncesAnotherProtocolWhenToldSoTheHostSeesIt) {
+  SimProcess sim;
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  ASSERT_EQ(sim.control("announce 3.7 0x12345678"), "ok");
+  sim.send(GetDeviceInfo{}, 5);
+  DeviceInfo d;
+  ASSERT_TRUE(sim.await(5, d));
+  EXPECT_EQ(d.protocol_major, 3);
+  EXPECT_EQ(d.protocol_minor, 7);
+  EXPECT_EQ(d.schema_hash, 0x12345678u);
+}
+
+}  // namespace
+}  // namespace palp::sim::test
