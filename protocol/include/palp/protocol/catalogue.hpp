@@ -290,8 +290,8 @@
   F(S, f32, 1, i2t_continuous_A, 1, 2.0, 0, 4.0, "A", "Current the coil carries indefinitely (I2t model; an assumption, see firmware/core).") \
   F(S, f32, 1, i2t_limit_A2s, 1, 60, 0.1, 10000, "A^2*s", "I2t model trip level above the continuous rating.") \
   F(S, f32, 1, i2t_tau_s, 1, 120, 1, 10000, "s", "I2t model cooling time constant.")             \
-  F(S, i32, 1, travel_min_counts, 1, -2000, NOLIM, NOLIM, "counts", "Lowest allowed encoder count (toward -z).") \
-  F(S, i32, 1, travel_max_counts, 1, 25000, NOLIM, NOLIM, "counts", "Highest allowed encoder count (toward +z).") \
+  F(S, i32, 1, travel_min_counts, 1, -1000, NOLIM, NOLIM, "counts", "Lowest allowed encoder count (toward -z); default: 1 mm behind the rear end stop, the stroke origin.") \
+  F(S, i32, 1, travel_max_counts, 1, 35000, NOLIM, NOLIM, "counts", "Highest allowed encoder count (toward +z); default: 1 mm beyond the front end stop of the 34 mm stroke.") \
   F(S, u32, 1, heartbeat_timeout_ms, 1, 500, 50, 10000, "ms", "Host watchdog timeout, armed while current is non-zero or a program runs.") \
   F(S, u32, 1, control_rate_Hz, 1, 20000, 20000, 40000, "Hz", "Control tick rate; a device accepts 20000 and 40000 and answers other values with out_of_range.") \
   F(S, f32, 1, supply_V, 1, 24, 6, 48, "V", "Coil supply voltage (the current loop's saturation).") \
