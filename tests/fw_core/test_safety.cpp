@@ -14,8 +14,10 @@ using proto::FaultReason;
 constexpr float kDt = 1.0f / 20000.0f;
 
 proto::Params test_params() {
-  proto::Params p;  // clamp 3.2 A, travel [-2000, 25000], heartbeat 500 ms
+  proto::Params p;  // clamp 3.2 A, heartbeat 500 ms (catalogue defaults)
   p.i2t_continuous_A = 2.0f;
+  p.travel_min_counts = -2000;  // the tests' own limits, independent of the defaults
+  p.travel_max_counts = 25000;
   return p;
 }
 
