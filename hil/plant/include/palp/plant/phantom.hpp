@@ -1,0 +1,88 @@
+// Phantoms: specimens the probe presses on, each loaded from a readable parameter file in
+// hil/plant/phantoms/ (format and every key: README.md "Phantom files").
+//
+// Phantom frame: x, y horizontal, z along the probe axis with +z into the specimen (down for a
+// vertical probe), z = 0 at the phantom's datum (the flat top of a 1D object, the mean top of the
+// pad). The surface height z_s(x, y) is the z of the top surface; the tip apex at z_tip
+// indents it by delta = z_tip - z_s. Outside the footprint z_s is +infinity (nothing to touch).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "palp/plant/contact.hpp"
+
+namespace palp::plant {
+
+/// A malformed phantom file: the message is one line, "file:line: problem".
+class PhantomError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class PhantomKind { line_1d, pad_2d };
+
+/// A named probing site in the phantom frame (1D: position k; pad: row r, column c).
+struct ProbeSite {
+  int row = 0;     // pad row 1..9; 0 for a 1D object
+  int column = 0;  // pad column 1..9; 1D position 1..10
+  double x_m = 0.0;
+  double y_m = 0.0;
+};
+
+class Phantom {
+ public:
+  virtual ~Phantom() = default;
+
+  const std::string& name() const { return name_; }
+  PhantomKind kind() const { return kind_; }
+
+  /// z of the top surface at (x, y), m; +infinity outside the footprint.
+  virtual double surface_z_m(double x_m, double y_m) const = 0;
+
+  /// The contact law at (x, y) (interpolated between the file's sites).
+  virtual ContactParams contact_params(double x_m, double y_m) const = 0;
+
+  /// All probing sites the paper names (1D: positions 1..10; pad: the 9 x 9 grid).
+  virtual std::vector<ProbeSite> sites() const = 0;
+
+  /// 1D position k (1..10); throws std::out_of_range if there is none.
+  ProbeSite position(int k) const;
+  /// Pad grid point (row, column), 1-based; throws std::out_of_range if there is none.
+  ProbeSite grid_point(int row, int column) const;
+
+  /// Number of sealed pressure channels (0 or 6).
+  virtual int pressure_channel_count() const { return 0; }
+
+  /// Gauge pressure of each channel (index 0 = paper channel 1), Pa, given the contact law at
+  /// the site touched and the contact force: Boyle (polytropic) compression of channel + tube by
+  /// dV = gain * F. All zero for phantoms without channels.
+  virtual std::array<double, kPressureChannels> channel_pressures_Pa(const ContactParams& at_site,
+                                                                     double contact_force_N) const;
+
+ protected:
+  Phantom(std::string name, PhantomKind kind) : name_(std::move(name)), kind_(kind) {}
+
+ private:
+  std::string name_;
+  PhantomKind kind_;
+};
+
+/// Parse phantom text; source_name names it in error messages. Throws PhantomError.
+std::shared_ptr<const Phantom> parse_phantom(std::string_view text, std::string_view source_name);
+
+/// Load a phantom file. Throws PhantomError (also when the file cannot be read).
+std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file);
+
+/// The directory of the shipped phantom files (hil/plant/phantoms).
+std::filesystem::path phantom_dir();
+
+/// Load a shipped phantom by name: "hollow_1d", "solid_1d", "insert_1d", "pad_2d".
+std::shared_ptr<const Phantom> load_shipped_phantom(std::string_view name);
+
+}  // namespace palp::plant

@@ -1,0 +1,116 @@
+// Plant: the probe (coil electrics, moving coil on its springs and slides, end stops, tip) and
+// the phantom it touches, advanced one control tick at a time by the simulator.
+//
+// Per step (README.md "Equations" and "Integrator"):
+//   L di/dt = v - R i - K_f(s) ds/dt         exact exponential over the tick (speed frozen)
+//   m(delta) d2s/dt2 = K_f(s) i_mean - k_v (s - s_0) - b_v ds/dt + m_v g cos - F_contact
+//                                             velocity Verlet, damping by the trapezoidal rule
+//                                             (second order; one contact evaluation per step)
+//   end stops: inelastic kinematic limits at stroke_min and stroke_max.
+// The tip apex sits at z_tip = z_mount + s in the phantom frame; delta = z_tip - z_s(x, y).
+// No allocation per step; sensor reads draw counter-based noise keyed by the tick number.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "palp/plant/config.hpp"
+#include "palp/plant/contact.hpp"
+#include "palp/plant/force_constant.hpp"
+#include "palp/plant/phantom.hpp"
+
+namespace palp::plant {
+
+/// Mechanical and electrical state, for tests and for placing the coil.
+struct CoilState {
+  double position_m = 0.0;  // stroke coordinate s
+  double velocity_m_per_s = 0.0;
+  double current_A = 0.0;
+};
+
+class Plant {
+ public:
+  /// phantom may be null: free air. Throws std::invalid_argument on an unusable config.
+  explicit Plant(PlantConfig config, std::shared_ptr<const Phantom> phantom = nullptr);
+
+  // --- placing the probe -------------------------------------------------------------------
+  /// Place the mount at once (a teleport: no speed enters the contact's viscous term).
+  /// (x, y, z) is the tip apex at stroke origin s = 0 (encoder count 0), phantom frame.
+  void set_mount(double x_m, double y_m, double z_m);
+  /// Move the mount to (x, y, z) during the next step (the robot's continuous motion: the
+  /// change of the surface gap over that step counts as speed in the contact's viscous term).
+  void move_mount(double x_m, double y_m, double z_m);
+  /// Put the coil in a given state (tests, ring-down); the contact memory is reset.
+  void reset_state(const CoilState& state);
+
+  // --- time --------------------------------------------------------------------------------
+  /// Advance by dt_s (10-100 us) with average coil voltage v_coil_V (the PWM duty times the
+  /// supply; clamped to +-supply, NaN counts as 0 V). Throws std::invalid_argument if dt <= 0.
+  void step(double dt_s, double v_coil_V);
+  /// Advance by the configured tick period.
+  void step(double v_coil_V) { step(config_.tick_period_s, v_coil_V); }
+
+  // --- sensors (what the firmware reads) ----------------------------------------------------
+  double coil_current_A() const { return current_A_; }  // true current
+  /// Current-sense reading: true current + noise, quantised by the current-sense ADC, A.
+  double current_sense_A() const;
+  std::uint16_t current_sense_code() const;
+  /// Encoder count from the stroke origin (1 count = encoder_resolution_m), round to nearest.
+  std::int32_t encoder_count() const;
+  /// Pressure ADC code of paper channel 1..6 (code/4096 = 0.5 + 0.4 p / 1245.42 Pa, + noise).
+  /// Channels a phantom lacks read 0 Pa. Throws std::out_of_range for other channel numbers.
+  std::uint16_t pressure_adc(int channel) const;
+
+  // --- true state (tests, logging) ----------------------------------------------------------
+  double position_m() const { return s_m_; }
+  double velocity_m_per_s() const { return v_m_per_s_; }
+  /// Contact force on the tip (>= 0, toward -z) at the state after the last step, set_mount or
+  /// reset_state (a move_mount takes effect in the next step).
+  double contact_force_N() const { return contact_.force_N; }
+  double elastic_contact_force_N() const { return contact_.elastic_force_N; }
+  double indentation_m() const;  // max(0, delta)
+  double tip_z_m() const { return mount_z_m_ + s_m_; }
+  double channel_pressure_Pa(int channel) const;  // true gauge pressure, paper channel 1..6
+  double force_constant_N_per_A() const { return kf_.at(s_m_); }
+  bool at_rear_stop() const;
+  bool at_front_stop() const;
+  double time_s() const { return time_s_; }
+  std::uint64_t tick() const { return tick_; }
+
+  /// Spring neutral point s_0 (behind the rear stop: the preload), from the float condition
+  /// K_f(s_f) I_c + m g = k_v (s_f - s_0) with the probe vertical.
+  double spring_neutral_m() const { return spring_neutral_m_; }
+  const PlantConfig& config() const { return config_; }
+  const ForceConstantTable& force_constant() const { return kf_; }
+  const Phantom* phantom() const { return phantom_.get(); }
+  const ContactParams& contact_params() const { return params_; }
+
+ private:
+  void refresh_site();
+  double depth_now() const;
+  void update_contact(double dt_s, double mount_rate_m_per_s);
+
+  PlantConfig config_;
+  ForceConstantTable kf_;
+  std::shared_ptr<const Phantom> phantom_;
+  double spring_neutral_m_ = 0.0;
+
+  // state
+  double s_m_ = 0.0, v_m_per_s_ = 0.0, current_A_ = 0.0;
+  double time_s_ = 0.0;
+  std::uint64_t tick_ = 0;
+
+  // mount and the contact site under it
+  double mount_x_m_ = 0.0, mount_y_m_ = 0.0, mount_z_m_ = 0.0;
+  double surface_z_m_ = 0.0;        // z_s under the mount (+inf: nothing)
+  double gap_offset_prev_m_ = 0.0;  // mount_z - z_s at the end of the previous step
+  bool site_dirty_ = true;
+  ContactParams params_{};
+  ContactModel contact_model_{};
+  ContactModel::Output contact_{};
+
+  // per-dt constants
+  double cached_dt_ = -1.0, elec_decay_ = 0.0, elec_mean_ = 0.0;
+};
+
+}  // namespace palp::plant

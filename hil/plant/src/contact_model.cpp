@@ -1,0 +1,58 @@
+// ContactModel: the per-step contact force (elastic + Kelvin-Voigt + optional relaxation).
+#include <algorithm>
+#include <cmath>
+
+#include "palp/plant/contact.hpp"
+
+namespace palp::plant {
+
+void ContactModel::reset() {
+  q_N_ = 0.0;
+  last_elastic_N_ = 0.0;
+  hint_depth_ = 0.0;
+  hint_u_ = -1.0;
+}
+
+ContactModel::Output ContactModel::evaluate(const ContactParams& params, double radius_m,
+                                            double depth_m, double depth_rate_m_per_s,
+                                            double dt_s) {
+  Output out;
+  const bool touching = depth_m > 0.0;
+  if (touching) {
+    const ElasticPoint el = elastic_contact(params, radius_m, depth_m, &hint_depth_, &hint_u_);
+    out.elastic_force_N = el.force_N;
+    out.stiffness_N_per_m = el.stiffness_N_per_m;
+  } else {
+    hint_depth_ = 0.0;
+  }
+
+  // Standard linear solid (quasi-linear form), exact for F_el changing linearly over the step.
+  const double tau1 = params.sls_relaxation_time_s;
+  if (params.viscoelasticity == Viscoelasticity::standard_linear_solid && tau1 > 0.0 &&
+      params.sls_strength > 0.0) {
+    if (dt_s != cached_dt_ || tau1 != cached_tau_) {
+      cached_dt_ = dt_s;
+      cached_tau_ = tau1;
+      decay_ = dt_s > 0.0 ? std::exp(-dt_s / tau1) : 1.0;
+      gain_ = dt_s > 0.0 ? tau1 / dt_s * (1.0 - decay_) : 1.0;
+    }
+    q_N_ = q_N_ * decay_ + params.sls_strength * (out.elastic_force_N - last_elastic_N_) * gain_;
+  } else {
+    q_N_ = 0.0;
+  }
+  last_elastic_N_ = out.elastic_force_N;
+
+  if (touching) {
+    out.touching = true;
+    out.rate_free_force_N = out.elastic_force_N + q_N_;
+    out.damping_N_s_per_m = params.retardation_time_s * out.stiffness_N_per_m;
+    out.force_N = std::max(0.0, out.rate_free_force_N + out.damping_N_s_per_m * depth_rate_m_per_s);
+    const double engage = params.mass_engage_depth_m > 0.0
+                              ? std::min(1.0, depth_m / params.mass_engage_depth_m)
+                              : 1.0;
+    out.mass_kg = params.participating_mass_kg * engage;
+  }
+  return out;
+}
+
+}  // namespace palp::plant

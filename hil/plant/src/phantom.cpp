@@ -1,0 +1,59 @@
+// Phantom base class, and loading phantom files (kind dispatch, file reading).
+#include "palp/plant/phantom.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "key_value_file.hpp"
+#include "phantom_read.hpp"
+
+#ifndef PALP_PHANTOM_DIR
+#error "PALP_PHANTOM_DIR must name hil/plant/phantoms (set by hil/plant/CMakeLists.txt)"
+#endif
+
+namespace palp::plant {
+
+ProbeSite Phantom::position(int k) const {
+  for (const ProbeSite& s : sites()) {
+    if (s.row == 0 && s.column == k) return s;
+  }
+  throw std::out_of_range(name_ + ": no position " + std::to_string(k));
+}
+
+ProbeSite Phantom::grid_point(int row, int column) const {
+  for (const ProbeSite& s : sites()) {
+    if (s.row == row && s.column == column && row > 0) return s;
+  }
+  throw std::out_of_range(name_ + ": no grid point row " + std::to_string(row) + ", column " +
+                          std::to_string(column));
+}
+
+std::array<double, kPressureChannels> Phantom::channel_pressures_Pa(const ContactParams&,
+                                                                    double) const {
+  return {};
+}
+
+std::shared_ptr<const Phantom> parse_phantom(std::string_view text, std::string_view source_name) {
+  const auto file = detail::KeyValueFile::parse(text, std::string(source_name));
+  file.require({"format_version", "kind"}, "every phantom");
+  file.integer("format_version", 1, 1);
+  const std::string kind = file.word("kind", {"line_1d", "pad_2d"});
+  if (kind == "line_1d") return detail::read_line_phantom(file);
+  return detail::read_pad_phantom(file);
+}
+
+std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw PhantomError(file.string() + ":0: cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_phantom(text.str(), file.filename().string());
+}
+
+std::filesystem::path phantom_dir() { return std::filesystem::path(PALP_PHANTOM_DIR); }
+
+std::shared_ptr<const Phantom> load_shipped_phantom(std::string_view name) {
+  return load_phantom(phantom_dir() / (std::string(name) + ".phantom"));
+}
+
+}  // namespace palp::plant

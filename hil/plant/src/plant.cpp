@@ -1,0 +1,230 @@
+// Plant: coil electrics, moving-coil mechanics, end stops, contact and sensors, one tick a step.
+#include "palp/plant/plant.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "palp/plant/noise.hpp"
+#include "palp/plant/sensors.hpp"
+
+namespace palp::plant {
+namespace {
+
+// The mount starts 1 m above the datum: out of reach of any phantom until it is placed.
+constexpr double kParkedMountZ_m = -1.0;
+
+void require(bool ok, const char* what) {
+  if (!ok) throw std::invalid_argument(std::string("PlantConfig: ") + what);
+}
+
+}  // namespace
+
+Plant::Plant(PlantConfig config, std::shared_ptr<const Phantom> phantom)
+    : config_(std::move(config)), kf_(config_.coil.kf_table), phantom_(std::move(phantom)) {
+  const CoilConfig& c = config_.coil;
+  const MechanicsConfig& m = config_.mechanics;
+  const SensorConfig& s = config_.sensors;
+  require(c.resistance_ohm > 0.0 && c.inductance_H > 0.0, "coil R and L must be positive");
+  require(c.supply_V > 0.0, "supply voltage must be positive");
+  require(m.moving_mass_kg > 0.0 && m.spring_rate_N_per_m > 0.0 && m.damping_N_s_per_m >= 0.0,
+          "mass and spring rate must be positive, damping non-negative");
+  require(m.stroke_max_m > m.stroke_min_m, "stroke_max must exceed stroke_min");
+  require(m.float_position_m > m.stroke_min_m && m.float_position_m < m.stroke_max_m,
+          "float position must lie inside the stroke");
+  require(m.tip_radius_m > 0.0, "tip radius must be positive");
+  require(s.encoder_resolution_m > 0.0, "encoder resolution must be positive");
+  require(s.current_sense_bits >= 2 && s.current_sense_bits <= 16 && s.pressure_adc_bits >= 2 &&
+              s.pressure_adc_bits <= 16,
+          "ADC bits must be 2..16");
+  require(s.current_sense_full_scale_A > 0.0 && s.pressure_full_scale_Pa > 0.0,
+          "sensor full scales must be positive");
+  require(config_.tick_period_s > 0.0, "tick period must be positive");
+
+  // Preload: the springs are set up with the probe vertical, so that at I_c the coil floats
+  // at s_f: K_f(s_f) I_c + m g = k_v (s_f - s_0).
+  const double hold_N =
+      kf_.at(m.float_position_m) * m.float_current_A + m.moving_mass_kg * m.gravity_m_per_s2;
+  spring_neutral_m_ = m.float_position_m - hold_N / m.spring_rate_N_per_m;
+
+  s_m_ = m.stroke_min_m;  // parked on the rear stop, 0 A
+  set_mount(0.0, 0.0, kParkedMountZ_m);
+}
+
+void Plant::refresh_site() {
+  if (phantom_) {
+    surface_z_m_ = phantom_->surface_z_m(mount_x_m_, mount_y_m_);
+    params_ = phantom_->contact_params(mount_x_m_, mount_y_m_);
+  } else {
+    surface_z_m_ = std::numeric_limits<double>::infinity();
+    params_ = ContactParams{};
+  }
+}
+
+void Plant::set_mount(double x_m, double y_m, double z_m) {
+  move_mount(x_m, y_m, z_m);
+  gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
+  update_contact(0.0, 0.0);  // the tip now sits at the new depth, with no speed from the move
+}
+
+void Plant::move_mount(double x_m, double y_m, double z_m) {
+  if (x_m != mount_x_m_ || y_m != mount_y_m_ || site_dirty_) {
+    mount_x_m_ = x_m;
+    mount_y_m_ = y_m;
+    refresh_site();
+    site_dirty_ = false;
+  }
+  mount_z_m_ = z_m;
+}
+
+void Plant::reset_state(const CoilState& state) {
+  const MechanicsConfig& m = config_.mechanics;
+  s_m_ = std::clamp(state.position_m, m.stroke_min_m, m.stroke_max_m);
+  v_m_per_s_ = state.velocity_m_per_s;
+  current_A_ = state.current_A;
+  contact_model_.reset();
+  gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
+  update_contact(0.0, 0.0);
+}
+
+double Plant::depth_now() const { return mount_z_m_ + s_m_ - surface_z_m_; }
+
+double Plant::indentation_m() const { return std::max(0.0, depth_now()); }
+
+void Plant::update_contact(double dt_s, double mount_rate_m_per_s) {
+  contact_ = contact_model_.evaluate(params_, config_.mechanics.tip_radius_m, depth_now(),
+                                     v_m_per_s_ + mount_rate_m_per_s, dt_s);
+}
+
+void Plant::step(double dt_s, double v_coil_V) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("Plant::step: dt must be positive");
+  const CoilConfig& c = config_.coil;
+  const MechanicsConfig& m = config_.mechanics;
+
+  const double v = std::isnan(v_coil_V) ? 0.0 : std::clamp(v_coil_V, -c.supply_V, c.supply_V);
+  if (dt_s != cached_dt_) {
+    const double tau_e = c.inductance_H / c.resistance_ohm;
+    cached_dt_ = dt_s;
+    elec_decay_ = std::exp(-dt_s / tau_e);
+    elec_mean_ = (1.0 - elec_decay_) * tau_e / dt_s;
+  }
+
+  // Electrics: exact solution of L di/dt = v - R i - K_f ds/dt with the speed held over the tick;
+  // the mechanics uses the tick's mean current, so the coil's impulse is exact.
+  const double kf0 = kf_.at(s_m_);
+  const double i_inf = (v - kf0 * v_m_per_s_) / c.resistance_ohm;
+  const double i_new = i_inf + (current_A_ - i_inf) * elec_decay_;
+  const double i_mean = i_inf + (current_A_ - i_inf) * elec_mean_;
+
+  const double weight = m.moving_mass_kg * m.gravity_m_per_s2 * m.gravity_axis_cosine;
+  auto other_force = [&](double s, double kf) {  // coil, springs, gravity
+    return kf * i_mean - m.spring_rate_N_per_m * (s - spring_neutral_m_) + weight;
+  };
+  const double half = 0.5 * dt_s;
+
+  // Velocity Verlet. First half kick with the forces at the start (contact from the last step).
+  double vel = v_m_per_s_ +
+               half *
+                   (other_force(s_m_, kf0) - m.damping_N_s_per_m * v_m_per_s_ - contact_.force_N) /
+                   (m.moving_mass_kg + contact_.mass_kg);
+  // Drift, with inelastic kinematic end stops.
+  double s = s_m_ + dt_s * vel;
+  int stop = 0;
+  if (s <= m.stroke_min_m) {
+    s = m.stroke_min_m;
+    stop = -1;
+  } else if (s >= m.stroke_max_m) {
+    s = m.stroke_max_m;
+    stop = 1;
+  }
+  if (stop * vel > 0.0) vel = 0.0;
+  s_m_ = s;
+
+  // Contact at the end of the step; the mount's motion over the step counts as speed.
+  const double offset = mount_z_m_ - surface_z_m_;
+  double mount_rate = 0.0;
+  if (std::isfinite(offset) && std::isfinite(gap_offset_prev_m_)) {
+    mount_rate = (offset - gap_offset_prev_m_) / dt_s;
+  }
+  gap_offset_prev_m_ = offset;
+  v_m_per_s_ = vel;  // provisional: the contact's rate term is settled below
+  update_contact(dt_s, mount_rate);
+
+  // Second half kick, implicit in the linear damping (b_v and the contact's tau k_t): with the
+  // explicit first half this is the trapezoidal rule for the damping (second order, A-stable);
+  // springs and contact stay explicit (stable for omega dt < 2; here omega dt < 0.02).
+  const double mass = m.moving_mass_kg + contact_.mass_kg;
+  const double f_other = other_force(s, kf_.at(s));
+  double vel_end = (vel + half * f_other / mass) / (1.0 + half * m.damping_N_s_per_m / mass);
+  if (contact_.touching) {
+    const double cd = contact_.damping_N_s_per_m;
+    const double with_contact =
+        (vel + half * (f_other - contact_.rate_free_force_N - cd * mount_rate) / mass) /
+        (1.0 + half * (m.damping_N_s_per_m + cd) / mass);
+    const double force = contact_.rate_free_force_N + cd * (with_contact + mount_rate);
+    if (force > 0.0) {
+      vel_end = with_contact;
+      contact_.force_N = force;
+    } else {
+      contact_.force_N = 0.0;  // the surface cannot follow: the tip separates
+    }
+  }
+  if (stop * vel_end > 0.0) vel_end = 0.0;
+
+  v_m_per_s_ = vel_end;
+  current_A_ = i_new;
+  time_s_ += dt_s;
+  ++tick_;
+}
+
+bool Plant::at_rear_stop() const { return s_m_ <= config_.mechanics.stroke_min_m; }
+bool Plant::at_front_stop() const { return s_m_ >= config_.mechanics.stroke_max_m; }
+
+double Plant::current_sense_A() const {
+  return current_A_from_code(current_sense_code(), config_.sensors.current_sense_full_scale_A,
+                             config_.sensors.current_sense_bits);
+}
+
+std::uint16_t Plant::current_sense_code() const {
+  const SensorConfig& s = config_.sensors;
+  double i = current_A_;
+  if (s.current_sense_noise_A > 0.0) {
+    i +=
+        s.current_sense_noise_A *
+        gaussian(config_.noise_seed, static_cast<std::uint32_t>(NoiseStream::current_sense), tick_);
+  }
+  return current_code_from_A(i, s.current_sense_full_scale_A, s.current_sense_bits);
+}
+
+std::int32_t Plant::encoder_count() const {
+  const SensorConfig& s = config_.sensors;
+  double pos = s_m_;
+  if (s.encoder_noise_m > 0.0) {
+    pos += s.encoder_noise_m *
+           gaussian(config_.noise_seed, static_cast<std::uint32_t>(NoiseStream::encoder), tick_);
+  }
+  const double counts = std::floor(pos / s.encoder_resolution_m + 0.5);
+  return static_cast<std::int32_t>(std::clamp(counts, -2147483648.0, 2147483647.0));
+}
+
+double Plant::channel_pressure_Pa(int channel) const {
+  if (channel < 1 || channel > static_cast<int>(kPressureChannels)) {
+    throw std::out_of_range("pressure channel must be 1..6");
+  }
+  if (!phantom_ || phantom_->pressure_channel_count() == 0) return 0.0;
+  return phantom_->channel_pressures_Pa(params_, contact_.force_N)[channel - 1];
+}
+
+std::uint16_t Plant::pressure_adc(int channel) const {
+  const SensorConfig& s = config_.sensors;
+  double p = channel_pressure_Pa(channel);
+  if (s.pressure_noise_Pa > 0.0) {
+    const auto stream = static_cast<std::uint32_t>(NoiseStream::pressure_base) +
+                        static_cast<std::uint32_t>(channel);
+    p += s.pressure_noise_Pa * gaussian(config_.noise_seed, stream, tick_);
+  }
+  return pressure_code_from_Pa(p, s.pressure_full_scale_Pa, s.pressure_adc_bits);
+}
+
+}  // namespace palp::plant

@@ -1,0 +1,36 @@
+// ADC transfer functions of the pressure sensors and the current-sense chain.
+#include "palp/plant/sensors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace palp::plant {
+namespace {
+
+std::uint16_t to_code(double scaled, int bits) {
+  const double top = std::ldexp(1.0, bits) - 1.0;
+  const double c = std::clamp(std::nearbyint(scaled), 0.0, top);
+  return static_cast<std::uint16_t>(c);
+}
+
+}  // namespace
+
+std::uint16_t pressure_code_from_Pa(double pressure_Pa, double full_scale_Pa, int bits) {
+  return to_code(std::ldexp(0.5 + 0.4 * pressure_Pa / full_scale_Pa, bits), bits);
+}
+
+double pressure_Pa_from_code(std::uint16_t code, double full_scale_Pa, int bits) {
+  return (std::ldexp(static_cast<double>(code), -bits) - 0.5) / 0.4 * full_scale_Pa;
+}
+
+std::uint16_t current_code_from_A(double current_A, double full_scale_A, int bits) {
+  const double half = std::ldexp(1.0, bits - 1);
+  return to_code(half + current_A / full_scale_A * half, bits);
+}
+
+double current_A_from_code(std::uint16_t code, double full_scale_A, int bits) {
+  const double half = std::ldexp(1.0, bits - 1);
+  return (static_cast<double>(code) - half) / half * full_scale_A;
+}
+
+}  // namespace palp::plant

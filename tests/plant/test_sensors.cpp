@@ -1,0 +1,106 @@
+// Sensors: encoder quantisation, ADC transfer functions, noise spread, and repeatability: the
+// same seed gives the same run, whatever else is read.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "palp/plant/noise.hpp"
+#include "palp/plant/plant.hpp"
+#include "palp/plant/sensors.hpp"
+#include "plant_test_util.hpp"
+
+namespace palp::plant {
+namespace {
+
+TEST(Encoder, CountsWholeMicrometresFromTheStrokeOrigin) {
+  Plant p{PlantConfig{}};
+  p.reset_state({12.3456e-3, 0.0, 0.0});
+  EXPECT_EQ(p.encoder_count(), 12346);
+  p.reset_state({12.3454e-3, 0.0, 0.0});
+  EXPECT_EQ(p.encoder_count(), 12345);
+  p.reset_state({0.0, 0.0, 0.0});
+  EXPECT_EQ(p.encoder_count(), 0);
+}
+
+TEST(PressureAdc, TransferIsHalfScalePlusFortyPercentPerFullScale) {
+  EXPECT_EQ(pressure_code_from_Pa(0.0), 2048);
+  EXPECT_EQ(pressure_code_from_Pa(1245.42), 3686);  // 0.9 x 4096 = 3686.4
+  EXPECT_EQ(pressure_code_from_Pa(-1245.42), 410);  // 0.1 x 4096 = 409.6
+  EXPECT_EQ(pressure_code_from_Pa(1e6), 4095);      // clamped
+  EXPECT_EQ(pressure_code_from_Pa(-1e6), 0);
+  EXPECT_NEAR(pressure_Pa_from_code(pressure_code_from_Pa(573.0)), 573.0, 0.4);
+}
+
+TEST(PressureAdc, ChannelsWithoutAPhantomReadAmbient) {
+  PlantConfig cfg;
+  cfg.sensors.pressure_noise_Pa = 0.0;
+  Plant p{cfg};
+  for (int ch = 1; ch <= 6; ++ch) EXPECT_EQ(p.pressure_adc(ch), 2048);
+  EXPECT_THROW(p.pressure_adc(0), std::out_of_range);
+  EXPECT_THROW(p.pressure_adc(7), std::out_of_range);
+}
+
+TEST(CurrentSense, CodeIsMidScaleAtZeroAndRoundTrips) {
+  EXPECT_EQ(current_code_from_A(0.0), 2048);
+  EXPECT_EQ(current_code_from_A(5.0), 4095);
+  EXPECT_NEAR(current_A_from_code(current_code_from_A(1.0)), 1.0, 5.0 / 2048);
+}
+
+TEST(CurrentSense, NoiseHasTheConfiguredSpreadAroundTheTrueCurrent) {
+  Plant p{PlantConfig{}};  // parked, 0 A, nothing moves
+  double sum = 0.0, sum2 = 0.0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    p.step(0.0);
+    const double i = p.current_sense_A();
+    sum += i;
+    sum2 += i * i;
+  }
+  const double mean = sum / n;
+  const double rms = std::sqrt(sum2 / n - mean * mean);
+  const double lsb = 10.0 / 4096.0;
+  EXPECT_NEAR(mean, 0.0, 1e-4);
+  EXPECT_NEAR(rms, std::sqrt(2e-3 * 2e-3 + lsb * lsb / 12.0), 0.05 * 2e-3);
+}
+
+TEST(Noise, GaussianIsStandardNormal) {
+  double sum = 0.0, sum2 = 0.0;
+  const int n = 200000;
+  for (int k = 0; k < n; ++k) {
+    const double g = gaussian(42, 3, static_cast<std::uint64_t>(k));
+    sum += g;
+    sum2 += g * g;
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sum2 / n, 1.0, 0.01);
+}
+
+std::vector<int> run_pad(std::uint64_t seed, bool read_extra) {
+  PlantConfig cfg;
+  cfg.noise_seed = seed;
+  test::Rig rig{cfg, load_shipped_phantom("pad_2d")};
+  const ProbeSite s = rig.plant.phantom()->grid_point(8, 8);
+  test::touch_at_float(rig, s.x_m, s.y_m);
+  std::vector<int> trace;
+  for (int k = 0; k < 2000; ++k) {
+    rig.tick(0.5 + k * 1e-3);
+    if (read_extra) (void)rig.plant.pressure_adc(3);
+    trace.push_back(rig.plant.encoder_count());
+    trace.push_back(rig.plant.current_sense_code());
+    trace.push_back(rig.plant.pressure_adc(6));
+    trace.push_back(rig.plant.pressure_adc(6));  // a second read in the same tick: same sample
+  }
+  return trace;
+}
+
+TEST(Repeatability, SameSeedGivesTheSameRunWhateverElseIsRead) {
+  const auto a = run_pad(7, false);
+  EXPECT_EQ(a, run_pad(7, false));
+  EXPECT_EQ(a, run_pad(7, true));
+  EXPECT_NE(a, run_pad(8, false));
+  for (std::size_t k = 0; k < a.size(); k += 4) EXPECT_EQ(a[k + 2], a[k + 3]);
+}
+
+}  // namespace
+}  // namespace palp::plant
