@@ -201,14 +201,10 @@ void Controller::service() {
   }
   IndexedSample s;
   while (samples_.pop(s)) streamer_.accept(s);
+  // a batch that does not fit waits in the backlog (not a drop): the streamer retries
   auto emit = [&](const auto& m) {
-    proto::u8 scratch[proto::kMaxWireFrame];
-    const std::size_t n = proto::encode_message(m, device_seq_, 0, scratch, sizeof scratch,
-                                                identity_.protocol.major, identity_.protocol.minor);
-    if (n == 0 || tx_.free() < n) return false;
-    for (std::size_t k = 0; k < n; ++k) tx_.push(scratch[k]);
+    if (!send(m, device_seq_, 0, /*count_drop=*/false)) return false;
     ++device_seq_;
-    ++counters_.frames_tx;
     return true;
   };
   streamer_.pump(emit, !streamer_.running());

@@ -120,8 +120,10 @@ class Controller {
 
   template <class M>
   void dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t watchdog_now_us);
+  /// Encodes m into the transmit buffer; false when it does not fit (counted as a dropped frame
+  /// unless count_drop is false, for senders that keep the message and retry).
   template <class M>
-  bool send(const M& m, std::uint16_t seq, std::uint8_t flags);
+  bool send(const M& m, std::uint16_t seq, std::uint8_t flags, bool count_drop = true);
   template <class M>
   bool reply(const proto::FrameHeader& request, const M& m) {
     return send(m, request.seq, proto::kFlagResponse);
@@ -173,12 +175,12 @@ class Controller {
 };
 
 template <class M>
-inline bool Controller::send(const M& m, std::uint16_t seq, std::uint8_t flags) {
+inline bool Controller::send(const M& m, std::uint16_t seq, std::uint8_t flags, bool count_drop) {
   proto::u8 scratch[proto::kMaxWireFrame];
   const std::size_t n = proto::encode_message(m, seq, flags, scratch, sizeof scratch,
                                               identity_.protocol.major, identity_.protocol.minor);
   if (n == 0 || tx_.free() < n) {
-    ++counters_.tx_frames_dropped;
+    if (count_drop) ++counters_.tx_frames_dropped;
     return false;
   }
   for (std::size_t k = 0; k < n; ++k) tx_.push(scratch[k]);
