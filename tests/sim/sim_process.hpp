@@ -18,6 +18,7 @@
 
 #include "palp/protocol/frame.hpp"
 #include "palp/protocol/schema.hpp"
+#include "palp/protocol/stream.hpp"
 
 namespace palp::sim::test {
 
@@ -90,6 +91,12 @@ class SimProcess {
   /// timeout_ms of wall time); returns whether it did, with its value.
   template <class M>
   bool await(proto::u16 seq, M& out, int timeout_ms = 5000) {
+    return await_collecting(seq, out, [](const auto&) {}, timeout_ms);
+  }
+
+  /// As await(), handing every other message that arrives meanwhile to seen(m).
+  template <class M, class Seen>
+  bool await_collecting(proto::u16 seq, M& out, Seen&& seen, int timeout_ms = 5000) {
     bool found = false;
     const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
     while (!found && std::chrono::steady_clock::now() < end) {
@@ -105,8 +112,10 @@ class SimProcess {
               if (!found && h.seq == seq && (h.flags & proto::kFlagResponse)) {
                 out = m;
                 found = true;
+                return;
               }
             }
+            seen(m);
           },
           [](proto::Reject) {});
     }
