@@ -14,6 +14,13 @@ std::size_t encode_frame(FrameHeader h, const u8* payload, std::size_t size, u8*
                          std::size_t capacity) {
   if (size > kMaxPayload) return 0;
   std::array<u8, kMaxFrame> raw;
+  for (std::size_t k = 0; k < size; ++k) raw[kHeaderSize + k] = payload[k];
+  return finish_frame(h, raw.data(), size, out, capacity);
+}
+
+std::size_t finish_frame(FrameHeader h, u8* raw, std::size_t size, u8* out,
+                         std::size_t capacity) {
+  if (size > kMaxPayload) return 0;
   h.payload_len = static_cast<u16>(size);
   raw[0] = h.major;
   raw[1] = h.minor;
@@ -23,11 +30,10 @@ std::size_t encode_frame(FrameHeader h, const u8* payload, std::size_t size, u8*
   raw[5] = static_cast<u8>(h.seq >> 8);
   raw[6] = static_cast<u8>(h.payload_len);
   raw[7] = static_cast<u8>(h.payload_len >> 8);
-  for (std::size_t k = 0; k < size; ++k) raw[kHeaderSize + k] = payload[k];
   const std::size_t body = kHeaderSize + size;
-  const u32 crc = crc32(raw.data(), body);
+  const u32 crc = crc32(raw, body);
   for (std::size_t k = 0; k < 4; ++k) raw[body + k] = static_cast<u8>(crc >> (8 * k));
-  const std::size_t n = cobs_encode(raw.data(), body + kCrcSize, out, capacity);
+  const std::size_t n = cobs_encode(raw, body + kCrcSize, out, capacity);
   if (n == 0 || n >= capacity) return 0;
   out[n] = 0;
   return n + 1;

@@ -46,16 +46,21 @@ struct FrameHeader {
 std::size_t encode_frame(FrameHeader header, const u8* payload, std::size_t size, u8* out,
                          std::size_t capacity);
 
+/// Completes a frame whose payload is already in raw[kHeaderSize, kHeaderSize + size): writes
+/// the header (payload_len from size) and the CRC into raw, then the wire bytes into out.
+/// raw must hold kMaxFrame bytes. Returns the number of wire bytes, 0 when out is too small.
+std::size_t finish_frame(FrameHeader header, u8* raw, std::size_t size, u8* out,
+                         std::size_t capacity);
+
 /// Encodes message m as one wire frame. Returns the number of bytes written, 0 on overflow.
 template <class M>
 std::size_t encode_message(const M& m, u16 seq, u8 flags, u8* out, std::size_t capacity,
                            u8 major = kProtocolMajor, u8 minor = kProtocolMinor) {
-  std::array<u8, kMaxPayload> payload;
-  const int n = encode_payload(m, payload.data(), payload.size());
+  std::array<u8, kMaxFrame> raw;  // the payload is encoded in place, after the header
+  const int n = encode_payload(m, raw.data() + kHeaderSize, kMaxPayload);
   if (n < 0) return 0;
-  FrameHeader h{major, minor, static_cast<u8>(M::kId), flags, seq, 0};
-  if (n == 0) return encode_frame(h, nullptr, 0, out, capacity);  // a message without fields
-  return encode_frame(h, payload.data(), static_cast<std::size_t>(n), out, capacity);
+  const FrameHeader h{major, minor, static_cast<u8>(M::kId), flags, seq, 0};
+  return finish_frame(h, raw.data(), static_cast<std::size_t>(n), out, capacity);
 }
 
 /// A frame that passed every frame-level check; payload points into the reader's buffer and is
