@@ -106,11 +106,11 @@ class Server {
         virtual_at_sync = sim_->ticks();
         wall_at_sync = Clock::now();
       }
+      // device bytes keep their order: whatever the socket buffer refused goes first next time
       const std::vector<std::uint8_t> out = sim_->take_device_bytes();
-      if (!out.empty() && device_.has_client() && !device_.send(out.data(), out.size()))
-        pending_.insert(pending_.end(), out.begin(), out.end());
-      if (!pending_.empty() && device_.send(pending_.data(), pending_.size())) pending_.clear();
+      pending_.insert(pending_.end(), out.begin(), out.end());
       if (!device_.has_client()) pending_.clear();
+      if (!pending_.empty() && device_.send(pending_.data(), pending_.size())) pending_.clear();
     }
     std::printf("palp-sim: stopped after %.3f s of virtual time\n", sim_->virtual_s());
     return 0;
