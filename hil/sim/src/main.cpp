@@ -77,7 +77,9 @@ class Server {
     std::uint64_t virtual_at_sync = 0;
     Clock::time_point wall_at_sync = Clock::now();
     while (g_stop == 0) {
-      const bool can_run = device_.has_client() && device_.tx_pending() < kStallBytes;
+      // stall while the host has not drained: virtual time waits, nothing is dropped
+      const bool can_run =
+          device_.has_client() && device_.tx_pending() + pending_.size() < kStallBytes;
       const auto ev = device_.poll(can_run && !sim_->holding() ? 0 : 2);
       if (ev.connected) {
         virtual_at_sync = sim_->ticks();
