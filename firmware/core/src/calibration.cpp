@@ -130,6 +130,24 @@ CalibrationStatus check_calibration_block(std::span<const std::uint8_t> bytes,
   return CalibrationStatus::ok;
 }
 
+namespace {
+// Copies the fields both layouts share into d; false when they cannot be valid.
+template <class D>
+bool take_common(const CommonFields& c, D& d) {
+  if (c.kf_count == 0 || c.kf_count > kForceConstantTableCapacity || c.stroke_origin_valid > 1)
+    return false;
+  d.kf_count = c.kf_count;
+  d.kf_position_counts = c.kf_position_counts;
+  d.kf_N_per_A = c.kf_N_per_A;
+  clear_unused(d.kf_position_counts, d.kf_count);
+  clear_unused(d.kf_N_per_A, d.kf_count);
+  d.current_offset_A = c.current_offset_A;
+  d.current_gain = c.current_gain;
+  d.stroke_origin_valid = c.stroke_origin_valid == 1;
+  return true;
+}
+}  // namespace
+
 CalibrationStatus parse_calibration_v2(std::span<const std::uint8_t> bytes, CalibrationData& out) {
   CalibrationHeader header;
   const CalibrationStatus status = check_calibration_block(bytes, header);
@@ -142,16 +160,7 @@ CalibrationStatus parse_calibration_v2(std::span<const std::uint8_t> bytes, Cali
       !read_array(r, d.pressure_gain) || !r.scalar(d.spring_k_N_per_m) ||
       !r.scalar(d.stroke_origin_counts))
     return CalibrationStatus::truncated;  // cannot happen: the size was checked
-  if (c.kf_count == 0 || c.kf_count > kForceConstantTableCapacity || c.stroke_origin_valid > 1)
-    return CalibrationStatus::invalid_values;
-  d.kf_count = c.kf_count;
-  d.kf_position_counts = c.kf_position_counts;
-  d.kf_N_per_A = c.kf_N_per_A;
-  clear_unused(d.kf_position_counts, d.kf_count);
-  clear_unused(d.kf_N_per_A, d.kf_count);
-  d.current_offset_A = c.current_offset_A;
-  d.current_gain = c.current_gain;
-  d.stroke_origin_valid = c.stroke_origin_valid == 1;
+  if (!take_common(c, d)) return CalibrationStatus::invalid_values;
   if (first_invalid_calibration_field(d) >= 0) return CalibrationStatus::invalid_values;
   out = d;
   return CalibrationStatus::ok;
@@ -169,16 +178,7 @@ CalibrationStatus parse_calibration_v1(std::span<const std::uint8_t> bytes,
   if (!read_common(r, c) || !read_array(r, d.pressure_offset_Pa) ||
       !r.scalar(d.spring_k_N_per_mm) || !r.scalar(d.stroke_origin_counts))
     return CalibrationStatus::truncated;  // cannot happen: the size was checked
-  if (c.kf_count == 0 || c.kf_count > kForceConstantTableCapacity || c.stroke_origin_valid > 1)
-    return CalibrationStatus::invalid_values;
-  d.kf_count = c.kf_count;
-  d.kf_position_counts = c.kf_position_counts;
-  d.kf_N_per_A = c.kf_N_per_A;
-  clear_unused(d.kf_position_counts, d.kf_count);
-  clear_unused(d.kf_N_per_A, d.kf_count);
-  d.current_offset_A = c.current_offset_A;
-  d.current_gain = c.current_gain;
-  d.stroke_origin_valid = c.stroke_origin_valid == 1;
+  if (!take_common(c, d)) return CalibrationStatus::invalid_values;
   out = d;
   return CalibrationStatus::ok;
 }
