@@ -13,34 +13,26 @@ const std::vector<std::string_view> kCommonKeys = {
     "format_version", "kind", "name", "contact_law", "viscoelasticity", "mass_engage_depth_m"};
 const std::vector<std::string_view> kSlsKeys = {"sls_relaxation_time_s", "sls_strength"};
 
-struct Common {
-  std::string name;
-  ContactLaw law = ContactLaw::sneddon;
-  Viscoelasticity ve = Viscoelasticity::kelvin_voigt;
-  double sls_tau = 0.0, sls_strength = 0.0, engage = 1e-3;
-};
-
 std::vector<std::string_view> join(std::vector<std::string_view> a,
                                    const std::vector<std::string_view>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
-Common read_common(const KeyValueFile& f, std::string_view context) {
+// Fills the keys every phantom kind has into c.
+void read_common(const KeyValueFile& f, std::string_view context, MaterialSpec& c) {
   f.require(kCommonKeys, context);
-  Common c;
   c.name = f.word("name", {});
   c.law = f.word("contact_law", {"hertz", "sneddon"}) == "hertz" ? ContactLaw::hertz
                                                                  : ContactLaw::sneddon;
   const std::string ve = f.word("viscoelasticity", {"kelvin_voigt", "standard_linear_solid"});
   if (ve == "standard_linear_solid") {
-    c.ve = Viscoelasticity::standard_linear_solid;
+    c.viscoelasticity = Viscoelasticity::standard_linear_solid;
     f.require(kSlsKeys, "viscoelasticity = standard_linear_solid");
   }
-  if (f.has("sls_relaxation_time_s")) c.sls_tau = f.number("sls_relaxation_time_s", 1e-6, 1e6);
+  if (f.has("sls_relaxation_time_s")) c.sls_relaxation_time_s = f.number("sls_relaxation_time_s", 1e-6, 1e6);
   if (f.has("sls_strength")) c.sls_strength = f.number("sls_strength", 0.0, 100.0);
-  c.engage = f.number("mass_engage_depth_m", 0.0, 0.1);
-  return c;
+  c.mass_engage_depth_m = f.number("mass_engage_depth_m", 0.0, 0.1);
 }
 
 // Construct, reporting the class's consistency errors at the file's "kind" line.
@@ -65,15 +57,8 @@ std::shared_ptr<const Phantom> read_line_phantom(const KeyValueFile& f) {
   const char* context = "kind = line_1d";
   f.reject_unknown(join(join(kCommonKeys, kSlsKeys), own), context);
   f.require(own, context);
-  const Common c = read_common(f, context);
-
   LinePhantomSpec s;
-  s.name = c.name;
-  s.law = c.law;
-  s.viscoelasticity = c.ve;
-  s.sls_relaxation_time_s = c.sls_tau;
-  s.sls_strength = c.sls_strength;
-  s.mass_engage_depth_m = c.engage;
+  read_common(f, context, s);
   const auto n = static_cast<std::size_t>(f.integer("position_count", 1, 100));
   s.length_m = f.number("length_m", 1e-3, 10.0);
   s.width_m = f.number("width_m", 1e-3, 10.0);
@@ -106,15 +91,8 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
   const char* context = "kind = pad_2d";
   f.reject_unknown(join(join(kCommonKeys, kSlsKeys), own), context);
   f.require(own, context);
-  const Common c = read_common(f, context);
-
   PadPhantomSpec s;
-  s.name = c.name;
-  s.law = c.law;
-  s.viscoelasticity = c.ve;
-  s.sls_relaxation_time_s = c.sls_tau;
-  s.sls_strength = c.sls_strength;
-  s.mass_engage_depth_m = c.engage;
+  read_common(f, context, s);
   s.size_x_m = f.number("size_x_m", 1e-3, 10.0);
   s.size_y_m = f.number("size_y_m", 1e-3, 10.0);
   s.thickness_m = f.number("thickness_m", 1e-3, 1.0);

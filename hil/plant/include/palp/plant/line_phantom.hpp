@@ -9,13 +9,7 @@
 
 namespace palp::plant {
 
-struct LinePhantomSpec {
-  std::string name;
-  ContactLaw law = ContactLaw::sneddon;
-  Viscoelasticity viscoelasticity = Viscoelasticity::kelvin_voigt;
-  double sls_relaxation_time_s = 0.0;
-  double sls_strength = 0.0;
-  double mass_engage_depth_m = 1e-3;
+struct LinePhantomSpec : MaterialSpec {
   double length_m = 0.0;            // footprint x in [0, length]
   double width_m = 0.0;             // footprint y in [-width/2, width/2]
   double first_position_x_m = 0.0;  // x of position 1

@@ -30,13 +30,7 @@ struct PadChannelClass {
   double effective_area_m2 = 0.0;   // A_k: volume lost per metre of that deflection
 };
 
-struct PadPhantomSpec {
-  std::string name;
-  ContactLaw law = ContactLaw::sneddon;
-  Viscoelasticity viscoelasticity = Viscoelasticity::kelvin_voigt;
-  double sls_relaxation_time_s = 0.0;
-  double sls_strength = 0.0;
-  double mass_engage_depth_m = 1e-3;
+struct PadPhantomSpec : MaterialSpec {
   double size_x_m = 0.0, size_y_m = 0.0, thickness_m = 0.0;
   int grid_count = 9;
   double grid_pitch_m = 0.0, grid_inset_x_m = 0.0, grid_inset_y_m = 0.0;

@@ -27,6 +27,16 @@ class PhantomError : public std::runtime_error {
 
 enum class PhantomKind { line_1d, pad_2d };
 
+/// What every phantom file states about its material (keys common to all kinds).
+struct MaterialSpec {
+  std::string name;
+  ContactLaw law = ContactLaw::sneddon;
+  Viscoelasticity viscoelasticity = Viscoelasticity::kelvin_voigt;
+  double sls_relaxation_time_s = 0.0;
+  double sls_strength = 0.0;
+  double mass_engage_depth_m = 1e-3;
+};
+
 /// A named probing site in the phantom frame (1D: position k; pad: row r, column c).
 struct ProbeSite {
   int row = 0;     // pad row 1..9; 0 for a 1D object
