@@ -1,0 +1,66 @@
+// Transports: the byte stream of frames to and from one controller (protocol/SPEC.md §3),
+// behind one small interface, chosen by URI:
+//
+//   usb://[serial][?vid=0x1209&pid=0x0001]   libusb, the vendor interface's bulk endpoints
+//   hid://[serial][?vid=0x1209&pid=0x0001]   hidapi, 64-byte reports (about 64 KB/s at most)
+//   sim://host:port                          palp-sim over TCP
+//   sim:///path/to/socket                    palp-sim over a Unix-domain socket
+//
+// An empty serial picks the only controller present and is an error when there are several.
+// Thread-safety: one thread may read while another writes; two concurrent readers (or writers)
+// are not allowed. The Probe client owns its transport and obeys this.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace palp {
+
+/// A parsed transport URI.
+struct Uri {
+  enum class Scheme { usb, hid, sim_tcp, sim_unix };
+  Scheme scheme = Scheme::sim_tcp;
+  std::string serial;          ///< usb, hid: the serial number wanted ("" = the only one)
+  std::string host;            ///< sim_tcp
+  std::uint16_t port = 0;      ///< sim_tcp
+  std::string path;            ///< sim_unix
+  std::optional<std::uint16_t> vid, pid;  ///< usb, hid: overrides of the USB identity
+  std::string text;            ///< the URI as given
+};
+
+/// Parses a URI; throws ConfigError naming the URI and what is wrong with it.
+Uri parse_uri(const std::string& text);
+
+class Transport {
+ public:
+  virtual ~Transport() = default;
+
+  /// Writes every byte or throws: ConnectionError when the link is gone, TimeoutError when the
+  /// device did not take the bytes within timeout.
+  virtual void write(std::span<const std::uint8_t> bytes, std::chrono::milliseconds timeout) = 0;
+
+  /// Reads what has arrived into buf, waiting up to timeout for the first byte. Returns the
+  /// number of bytes, 0 when nothing arrived in time. Throws ConnectionError when the link is
+  /// gone (unplugged, simulator stopped).
+  virtual std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) = 0;
+
+  /// The most bytes per second this transport carries from the device (a stream whose byte rate
+  /// exceeds it is refused before it starts).
+  virtual std::uint32_t max_device_bytes_per_s() const = 0;
+
+  /// The URI this transport was opened from, for messages.
+  virtual const std::string& uri() const = 0;
+};
+
+/// Opens the transport a URI names. Throws ConfigError for a malformed URI, ConnectionError
+/// when the device is absent or cannot be opened (the message says why and what to try).
+std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseconds timeout);
+std::unique_ptr<Transport> open_transport(const std::string& uri,
+                                          std::chrono::milliseconds timeout);
+
+}  // namespace palp

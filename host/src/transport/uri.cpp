@@ -1,0 +1,78 @@
+// URI parsing for the transports (transport.hpp).
+#include <charconv>
+#include <string_view>
+
+#include "palp/error.hpp"
+#include "palp/transport.hpp"
+
+namespace palp {
+namespace {
+
+[[noreturn]] void bad(const std::string& text, const std::string& why) {
+  throw ConfigError("transport URI '" + text + "': " + why +
+                    " (expected usb://[serial], hid://[serial], sim://host:port or "
+                    "sim:///path/to/socket)");
+}
+
+std::uint16_t parse_u16(const std::string& text, std::string_view v, const char* what) {
+  int base = 10;
+  if (v.size() > 2 && v[0] == '0' && (v[1] == 'x' || v[1] == 'X')) {
+    v.remove_prefix(2);
+    base = 16;
+  }
+  unsigned value = 0;
+  const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), value, base);
+  if (ec != std::errc{} || p != v.data() + v.size() || v.empty() || value > 0xFFFF)
+    bad(text, std::string(what) + " '" + std::string(v) + "' is not a number from 0 to 65535");
+  return static_cast<std::uint16_t>(value);
+}
+
+}  // namespace
+
+Uri parse_uri(const std::string& text) {
+  Uri u;
+  u.text = text;
+  const std::size_t sep = text.find("://");
+  if (sep == std::string::npos) bad(text, "no scheme");
+  const std::string scheme = text.substr(0, sep);
+  std::string rest = text.substr(sep + 3);
+  if (scheme == "sim") {
+    if (!rest.empty() && rest[0] == '/') {
+      u.scheme = Uri::Scheme::sim_unix;
+      u.path = rest;
+      return u;
+    }
+    u.scheme = Uri::Scheme::sim_tcp;
+    const std::size_t colon = rest.rfind(':');
+    if (colon == std::string::npos || colon == 0) bad(text, "sim:// needs host:port");
+    u.host = rest.substr(0, colon);
+    u.port = parse_u16(text, std::string_view(rest).substr(colon + 1), "port");
+    if (u.port == 0) bad(text, "port 0 is not a port to connect to");
+    return u;
+  }
+  if (scheme != "usb" && scheme != "hid") bad(text, "unknown scheme '" + scheme + "'");
+  u.scheme = scheme == "usb" ? Uri::Scheme::usb : Uri::Scheme::hid;
+  const std::size_t q = rest.find('?');
+  std::string query;
+  if (q != std::string::npos) {
+    query = rest.substr(q + 1);
+    rest = rest.substr(0, q);
+  }
+  if (rest.find('/') != std::string::npos) bad(text, "a serial number has no '/'");
+  u.serial = rest;
+  std::string_view qv(query);
+  while (!qv.empty()) {
+    const std::size_t amp = qv.find('&');
+    const std::string_view kv = qv.substr(0, amp);
+    qv = amp == std::string_view::npos ? std::string_view{} : qv.substr(amp + 1);
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string_view::npos) bad(text, "parameter '" + std::string(kv) + "' has no value");
+    const std::string_view key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (key == "vid") u.vid = parse_u16(text, value, "vid");
+    else if (key == "pid") u.pid = parse_u16(text, value, "pid");
+    else bad(text, "unknown parameter '" + std::string(key) + "' (known: vid, pid)");
+  }
+  return u;
+}
+
+}  // namespace palp

@@ -1,0 +1,9 @@
+// Placeholder until the usb transport lands: refuses with a clear error.
+#include "palp/error.hpp"
+#include "transport/factories.hpp"
+
+namespace palp::detail {
+std::unique_ptr<Transport> open_usb_transport(const Uri& uri, std::chrono::milliseconds) {
+  throw ConnectionError("transport URI '" + uri.text + "': the usb transport is not built yet");
+}
+}  // namespace palp::detail
