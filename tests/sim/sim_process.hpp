@@ -24,15 +24,18 @@ namespace palp::sim::test {
 
 class SimProcess {
  public:
-  explicit SimProcess(std::vector<std::string> extra_args = {}) {
+  /// connect_device false leaves the device socket to another client (palp-sim serves one):
+  /// the SDK under test. port 0 lets palp-sim pick one; a restart passes the previous port.
+  explicit SimProcess(std::vector<std::string> extra_args = {}, bool connect_device = true,
+                      std::uint16_t port = 0) {
     int out[2];
     if (::pipe(out) != 0) return;
     pid_ = ::fork();
     if (pid_ == 0) {
       ::dup2(out[1], 1);
       ::close(out[0]);
-      std::vector<std::string> args = {PALP_SIM_BINARY, "--port", "0", "--control-port", "0",
-                                       "--pace", "fast"};
+      std::vector<std::string> args = {PALP_SIM_BINARY, "--port", std::to_string(port),
+                                       "--control-port", "0", "--pace", "fast"};
       args.insert(args.end(), extra_args.begin(), extra_args.end());
       std::vector<char*> argv;
       for (auto& a : args) argv.push_back(a.data());
@@ -55,8 +58,10 @@ class SimProcess {
     unsigned dp = 0, cp = 0;
     if (std::sscanf(line.c_str(), "palp-sim listening on tcp://127.0.0.1:%u (device protocol), "
                                   "control on tcp://127.0.0.1:%u", &dp, &cp) == 2) {
-      device_ = connect_to(static_cast<std::uint16_t>(dp));
+      device_port_ = static_cast<std::uint16_t>(dp);
+      if (connect_device) device_ = connect_to(device_port_);
       control_ = connect_to(static_cast<std::uint16_t>(cp));
+      connect_device_ = connect_device;
     }
   }
   ~SimProcess() {
@@ -68,7 +73,20 @@ class SimProcess {
       ::waitpid(pid_, &status, 0);
     }
   }
-  bool ok() const { return device_ >= 0 && control_ >= 0; }
+  bool ok() const { return (device_ >= 0 || !connect_device_) && control_ >= 0; }
+  std::uint16_t device_port() const { return device_port_; }
+  /// The SDK URI of the device socket.
+  std::string uri() const { return "sim://127.0.0.1:" + std::to_string(device_port_); }
+  /// Stops palp-sim now (SIGTERM) and waits for it.
+  void stop() {
+    if (control_ >= 0) ::close(control_);
+    control_ = -1;
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      ::waitpid(pid_, nullptr, 0);
+      pid_ = -1;
+    }
+  }
   const std::string& banner() const { return banner_; }
   bool alive() const { return pid_ > 0 && ::waitpid(pid_, nullptr, WNOHANG) == 0; }
 
@@ -152,6 +170,8 @@ class SimProcess {
   }
 
   pid_t pid_ = -1;
+  std::uint16_t device_port_ = 0;
+  bool connect_device_ = true;
   int device_ = -1;
   int control_ = -1;
   std::string banner_;

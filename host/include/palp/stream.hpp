@@ -71,6 +71,9 @@ struct Gap {
   std::uint64_t count = 0;
   GapSource source = GapSource::transport;
   double t_device_s = 0;  ///< device time of the first missing sample
+  /// False only for a reconnect after which the device's clock restarted (a reset device or a
+  /// restarted simulator): then nobody knows how many samples were missed, and count is 0.
+  bool count_known = true;
 };
 
 using StreamItem = std::variant<Sample, Gap>;

@@ -1,0 +1,302 @@
+// palp::Probe: the public API over a Session.
+#include "palp/probe.hpp"
+
+#include <cmath>
+
+#include "palp/protocol/stream.hpp"
+#include "probe/probe_impl.hpp"
+
+namespace palp {
+
+using detail::Session;
+
+const char* sdk_version() { return PALP_SDK_VERSION; }
+
+const char* gap_source_name(GapSource s) {
+  switch (s) {
+    case GapSource::isr_queue: return "isr_queue";
+    case GapSource::stream_backlog: return "stream_backlog";
+    case GapSource::usb_in: return "usb_in";
+    case GapSource::transport: return "transport";
+    case GapSource::host_queue: return "host_queue";
+    case GapSource::reconnect: return "reconnect";
+  }
+  return "unknown";
+}
+
+namespace {
+
+template <class T>
+T expect(detail::Reply&& r, const char* request) {
+  if (auto* v = std::get_if<T>(&r)) return std::move(*v);
+  throw ProtocolError(std::string("the device answered ") + request +
+                      " with another message than the protocol says");
+}
+
+DeviceInfo to_info(const proto::DeviceInfo& d) {
+  auto text = [](const auto& s) { return std::string(s.bytes.data(), s.length()); };
+  DeviceInfo i;
+  i.serial = text(d.serial);
+  i.board = text(d.board);
+  i.git_hash = text(d.git_hash);
+  i.firmware_version = std::to_string(d.fw_major) + "." + std::to_string(d.fw_minor) + "." +
+                       std::to_string(d.fw_patch);
+  i.protocol_major = d.protocol_major;
+  i.protocol_minor = d.protocol_minor;
+  i.schema_hash = d.schema_hash;
+  i.capabilities = d.capabilities;
+  i.max_current_A = d.max_current_A;
+  i.control_rate_Hz = d.control_rate_Hz;
+  i.max_stream_rate_Hz = d.max_stream_rate_Hz;
+  i.heartbeat_timeout_s = d.heartbeat_timeout_ms * 1e-3;
+  i.max_payload = d.max_payload;
+  return i;
+}
+
+}  // namespace
+
+Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->session = std::make_unique<Session>(uri, options);
+  impl_->info = to_info(impl_->session->device_info());
+}
+
+Probe::~Probe() {
+  try {
+    close();
+  } catch (...) {  // a destructor never throws; close() already did what it could
+  }
+}
+Probe::Probe(Probe&&) noexcept = default;
+Probe& Probe::operator=(Probe&&) noexcept = default;
+
+Session& Probe::Impl::s() {
+  if (!session) throw ConnectionError("this Probe is closed");
+  return *session;
+}
+
+const DeviceInfo& Probe::info() const { return impl_->info; }
+const Handshake& Probe::handshake() const { return impl_->session->handshake(); }
+const std::string& Probe::uri() const { return impl_->session->uri(); }
+
+Status Probe::status() {
+  Session& s = impl_->s();
+  const auto st = expect<proto::Status>(s.request(proto::GetStatus{}, s.default_timeout()), "GetStatus");
+  Status out;
+  out.t_device_s = static_cast<double>(st.device_time_us) * 1e-6;
+  out.state = st.state;
+  out.fault = st.fault;
+  out.program = st.program_kind;
+  out.program_state = st.program_state;
+  out.i_cmd_A = st.i_cmd_A;
+  out.i_A = st.i_A;
+  out.encoder_counts = st.encoder_count;
+  out.z_m = st.encoder_count * 1e-6;
+  out.i2t_fraction = st.i2t_fraction;
+  out.streaming = st.streaming != 0;
+  out.status_bits = st.status_bits;
+  return out;
+}
+
+HealthCounters Probe::health() {
+  Session& s = impl_->s();
+  s.set_device_health(expect<proto::Health>(s.request(proto::GetHealth{}, s.default_timeout()), "GetHealth"));
+  return s.health_snapshot();
+}
+
+Params Probe::params() {
+  Session& s = impl_->s();
+  return expect<proto::Params>(s.request(proto::GetParams{}, s.default_timeout()), "GetParams");
+}
+
+void Probe::set_params(const Params& p) {
+  Session& s = impl_->s();
+  proto::SetParams sp;
+  static_assert(sizeof(sp) == sizeof(p));
+  sp = std::bit_cast<proto::SetParams>(p);
+  const auto in_force = expect<proto::Params>(s.request(sp, s.default_timeout()), "SetParams");
+  s.set_heartbeat_timeout_ms(in_force.heartbeat_timeout_ms);
+}
+
+Calibration Probe::calibration() {
+  Session& s = impl_->s();
+  return expect<proto::Calibration>(s.request(proto::GetCalibration{}, s.default_timeout()),
+                                    "GetCalibration");
+}
+
+void Probe::set_calibration(const Calibration& c) {
+  Session& s = impl_->s();
+  static_assert(sizeof(proto::SetCalibration) == sizeof(c));
+  expect<proto::Calibration>(s.request(std::bit_cast<proto::SetCalibration>(c), s.default_timeout()),
+                             "SetCalibration");
+}
+
+void Probe::commit_calibration() {
+  Session& s = impl_->s();
+  expect<proto::Ack>(s.request(proto::CommitCalibration{}, s.default_timeout()), "CommitCalibration");
+}
+
+template <class M>
+static void load_program(Session& s, const M& m) {
+  expect<proto::Ack>(s.request(m, s.default_timeout()), M::kName);
+}
+void Probe::load(const HoldProgram& p) { load_program(impl_->s(), p); }
+void Probe::load(const RampProgram& p) { load_program(impl_->s(), p); }
+void Probe::load(const SineProgram& p) { load_program(impl_->s(), p); }
+void Probe::load(const SweepProgram& p) { load_program(impl_->s(), p); }
+void Probe::load(const MultisineProgram& p) { load_program(impl_->s(), p); }
+void Probe::load(const ContactWatchProgram& p) { load_program(impl_->s(), p); }
+
+void Probe::start() {
+  Session& s = impl_->s();
+  const detail::EventLog before = s.events();
+  impl_->finished_before_start = before.finished;
+  impl_->contact_before_start = before.contact;
+  expect<proto::Ack>(s.request(proto::ProgramStart{}, s.default_timeout()), "ProgramStart");
+}
+
+void Probe::stop() {
+  Session& s = impl_->s();
+  expect<proto::Ack>(s.request(proto::ProgramStop{}, s.default_timeout()), "ProgramStop");
+}
+
+ProgramResult Probe::wait(std::chrono::milliseconds timeout) {
+  Session& s = impl_->s();
+  const std::uint64_t after = impl_->finished_before_start;
+  if (!s.wait_event(timeout, [&](const detail::EventLog& e) { return e.finished > after; }))
+    throw TimeoutError("the program to finish on " + s.uri() +
+                           " (ProgramStatus: " + std::to_string(program_status().elapsed_us) +
+                           " us elapsed)",
+                       static_cast<double>(timeout.count()) / 1000.0, s.health_snapshot());
+  const detail::EventLog e = s.events();
+  if (e.last_finished.end == proto::ProgramEnd::fault) {
+    const FaultInfo f = e.last_fault;
+    throw FaultError("the program ended by a fault: " + f.text, static_cast<std::uint16_t>(f.reason));
+  }
+  return e.last_finished;
+}
+
+proto::ProgramStatus Probe::program_status() {
+  Session& s = impl_->s();
+  return expect<proto::ProgramStatus>(s.request(proto::GetProgramStatus{}, s.default_timeout()),
+                                      "GetProgramStatus");
+}
+
+std::optional<ContactEvent> Probe::wait_contact(std::chrono::milliseconds timeout) {
+  Session& s = impl_->s();
+  const std::uint64_t after = impl_->contact_before_start;
+  if (!s.wait_event(timeout, [&](const detail::EventLog& e) { return e.contact > after; }))
+    return std::nullopt;
+  return s.events().last_contact;
+}
+
+FaultInfo Probe::fault() {
+  const Status st = status();
+  FaultInfo f = impl_->s().events().last_fault;
+  if (st.fault == proto::FaultReason::none) return FaultInfo{};
+  if (f.reason != st.fault) {
+    f = FaultInfo{};
+    f.reason = st.fault;
+    const char* n = proto::enum_name(st.fault);
+    f.text = n ? n : "unknown";
+  }
+  return f;
+}
+
+void Probe::clear_fault() {
+  Session& s = impl_->s();
+  expect<proto::Ack>(s.request(proto::FaultClear{}, s.default_timeout()), "FaultClear");
+}
+
+// ---- streaming -------------------------------------------------------------------------------
+
+StreamInfo Probe::configure_stream(const StreamSettings& st) {
+  Session& s = impl_->s();
+  const DeviceInfo& d = impl_->info;
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
+    return std::string(b);
+  };
+  if (!(st.rate_Hz > 0) || st.rate_Hz > d.max_stream_rate_Hz)
+    throw ConfigError("stream rate " + num(st.rate_Hz) + " Hz is outside (0, " +
+                      num(d.max_stream_rate_Hz) + "] Hz, the device's maximum");
+  const double dec = d.control_rate_Hz / st.rate_Hz;
+  const double dec_whole = std::round(dec);
+  if (std::fabs(dec - dec_whole) > 1e-9 * dec || dec_whole > 65535)
+    throw ConfigError("stream rate " + num(st.rate_Hz) + " Hz does not divide the control rate " +
+                      num(d.control_rate_Hz) + " Hz (use " + num(d.control_rate_Hz / std::ceil(dec)) +
+                      " Hz or " + num(d.control_rate_Hz / std::max(1.0, std::floor(dec))) + " Hz)");
+  if (st.channels == 0 || (st.channels & ~channel::all) != 0)
+    throw ConfigError("stream channels 0x" + std::to_string(st.channels) +
+                      ": choose at least one of the 11 channel bits (stream.hpp, palp::channel)");
+  const std::size_t most = proto::max_batch_samples(st.channels);
+  std::size_t batch = st.batch_samples;
+  if (batch == 0) batch = std::clamp<std::size_t>(static_cast<std::size_t>(st.rate_Hz / 25.0), 1, most);
+  if (batch > most)
+    throw ConfigError("stream batch of " + std::to_string(batch) + " samples: at most " +
+                      std::to_string(most) + " samples of these channels fit one batch");
+  const std::uint32_t need = proto::stream_wire_bytes_per_s(st.channels, st.rate_Hz, batch);
+  if (need > s.transport_bytes_per_s())
+    throw ConfigError("stream of " + std::to_string(proto::bytes_per_sample(st.channels)) +
+                      "-byte samples at " + num(st.rate_Hz) + " Hz needs " + std::to_string(need) +
+                      " bytes/s on the wire; " + s.uri() + " carries at most " +
+                      std::to_string(s.transport_bytes_per_s()) +
+                      " bytes/s: lower the rate or stream fewer channels");
+  proto::StreamConfigure c;
+  c.channels = st.channels;
+  c.decimation = static_cast<std::uint16_t>(dec_whole);
+  c.batch_samples = static_cast<std::uint16_t>(batch);
+  const auto cfg = expect<proto::StreamConfig>(s.request(c, s.default_timeout()), "StreamConfigure");
+  s.stream_configured(c);
+  StreamInfo& info = impl_->stream;
+  info.channels = cfg.channels;
+  info.batch_samples = cfg.batch_samples;
+  info.period_s = cfg.period_ns * 1e-9;
+  info.rate_Hz = cfg.period_ns > 0 ? 1e9 / cfg.period_ns : 0;
+  info.wire_bytes_per_s = cfg.wire_bytes_per_s;
+  return info;
+}
+
+void Probe::start_stream() {
+  Session& s = impl_->s();
+  s.stream_started();
+  expect<proto::Ack>(s.request(proto::StreamStart{}, s.default_timeout()), "StreamStart");
+}
+
+void Probe::stop_stream() {
+  Session& s = impl_->s();
+  expect<proto::Ack>(s.request(proto::StreamStop{}, s.default_timeout()), "StreamStop");
+  s.stream_stopped();
+}
+
+const StreamInfo& Probe::stream_info() const { return impl_->stream; }
+
+std::optional<StreamItem> Probe::next(std::chrono::milliseconds timeout) {
+  return impl_->s().queue().pop(timeout);
+}
+std::size_t Probe::drain(std::vector<StreamItem>& out, std::size_t max) {
+  return impl_->s().queue().drain(out, max);
+}
+void Probe::on_stream(std::function<void(const StreamItem&)> callback) {
+  impl_->s().queue().set_callback(std::move(callback));
+}
+ClockMapping Probe::clock() const { return impl_->session->clock(); }
+
+void Probe::close() {
+  if (!impl_ || !impl_->session) return;
+  Session& s = *impl_->session;
+  // leave the device with zero current: stop whatever runs, then the stream
+  const auto t = std::min(s.default_timeout(), std::chrono::milliseconds(1000));
+  try {
+    if (status().program_state == proto::ProgramState::running) s.request(proto::ProgramStop{}, t);
+  } catch (const Error&) {
+  }
+  try {
+    s.request(proto::StreamStop{}, t);
+  } catch (const Error&) {
+  }
+  s.shutdown();
+  impl_->session.reset();
+}
+
+}  // namespace palp

@@ -1,0 +1,22 @@
+// Probe's private state (probe.cpp, probe_helpers.cpp).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "palp/probe.hpp"
+#include "probe/session.hpp"
+
+namespace palp {
+
+struct Probe::Impl {
+  std::unique_ptr<detail::Session> session;
+  DeviceInfo info;
+  StreamInfo stream;
+  std::uint64_t finished_before_start = 0;
+  std::uint64_t contact_before_start = 0;
+  std::vector<ZeroingRecord> zeroing;
+  detail::Session& s();
+};
+
+}  // namespace palp
