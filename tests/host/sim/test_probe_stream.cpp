@@ -1,0 +1,202 @@
+// Streaming from palp-sim through the SDK: order, no loss at 10 kHz, every loss reported as a
+// gap record with its source, back-pressure, the device-to-host clock mapping and reconnect.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "palp/probe.hpp"
+#include "sim_process.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using palp::Gap;
+using palp::Sample;
+using palp::StreamItem;
+using palp::sim::test::SimProcess;
+using testing::HasSubstr;
+
+/// Walks items and checks the stream's bookkeeping: every index from the first on is either a
+/// sample or inside exactly one gap, in order. Returns samples and missing counts.
+struct Tally {
+  std::uint64_t samples = 0, missing = 0, gaps = 0, next = 0;
+  bool in_order = true;
+  std::vector<Gap> gap_list;
+  void add(const StreamItem& item) {
+    if (const Sample* s = std::get_if<Sample>(&item)) {
+      in_order = in_order && s->index == next;
+      next = s->index + 1;
+      ++samples;
+    } else {
+      const Gap& g = std::get<Gap>(item);
+      in_order = in_order && g.first_index == next;
+      next = g.first_index + g.count;
+      missing += g.count;
+      ++gaps;
+      gap_list.push_back(g);
+    }
+  }
+};
+
+TEST(ProbeStream, AMillionSamplesAt10kHzArriveInOrderWithNoneLost) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  const palp::StreamInfo info = probe.configure_stream({.rate_Hz = 10000.0});
+  EXPECT_DOUBLE_EQ(info.period_s, 1e-4);
+  EXPECT_EQ(info.batch_samples, 40);  // all 11 channels: 24-byte samples, 960 data bytes
+  probe.start_stream();
+  Tally t;
+  std::vector<StreamItem> items;
+  double last_t = -1;
+  bool times_exact = true;
+  while (t.samples + t.missing < 1'000'000) {
+    items.clear();
+    if (probe.drain(items) == 0) {
+      if (auto one = probe.next(5s)) items.push_back(*one);
+      else break;
+    }
+    for (const StreamItem& item : items) {
+      t.add(item);
+      if (const Sample* s = std::get_if<Sample>(&item)) {
+        times_exact = times_exact && (last_t < 0 || std::abs(s->t_device_s - last_t - 1e-4) < 1e-9);
+        last_t = s->t_device_s;
+      }
+    }
+  }
+  probe.stop_stream();
+  EXPECT_TRUE(t.in_order);
+  EXPECT_GE(t.samples, 1'000'000u);
+  EXPECT_EQ(t.missing, 0u);
+  EXPECT_EQ(t.gaps, 0u);
+  EXPECT_TRUE(times_exact) << "sample times are not exactly 100 us apart";
+  const palp::HealthCounters h = probe.health();
+  EXPECT_EQ(h.host_samples_missing, 0u);
+  EXPECT_EQ(h.stream_samples_lost, 0u);
+  EXPECT_EQ(h.host_rx_rejected, 0u);
+}
+
+TEST(ProbeStream, FramesTheSimulatorDropsBecomeTransportGapsThatAccountForEveryIndex) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  probe.configure_stream({.rate_Hz = 10000.0});
+  probe.start_stream();
+  ASSERT_EQ(sim.control("drop-frames 5"), "ok");
+  Tally t;
+  while (t.samples + t.missing < 50'000) {
+    auto item = probe.next(5s);
+    ASSERT_TRUE(item.has_value()) << "the stream stopped";
+    t.add(*item);
+  }
+  ASSERT_EQ(sim.control("drop-frames 0"), "ok");
+  EXPECT_TRUE(t.in_order);
+  EXPECT_GT(t.gaps, 0u);
+  for (const Gap& g : t.gap_list) {
+    EXPECT_EQ(g.source, palp::GapSource::transport);
+    EXPECT_EQ(g.count % 40, 0u) << "a dropped frame is a whole batch of 40 samples";
+    EXPECT_TRUE(g.count_known);
+  }
+  // the queue's own counters agree with the records
+  const palp::HealthCounters h = probe.health();
+  EXPECT_GE(h.host_samples_missing, t.missing);
+  EXPECT_EQ(h.host_queue_dropped, 0u);
+}
+
+TEST(ProbeStream, AFullHostQueueDropsTheNewestSamplesAsOneHostQueueGap) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::ConnectOptions o;
+  o.queue_items = 1000;
+  palp::Probe probe(sim.uri(), o);
+  probe.configure_stream({.rate_Hz = 10000.0});
+  probe.start_stream();
+  std::this_thread::sleep_for(300ms);  // 300 ms at >= 1x: far more than 1000 samples
+  probe.stop_stream();
+  std::vector<StreamItem> items;
+  probe.drain(items);
+  Tally t;
+  for (const StreamItem& item : items) t.add(item);
+  EXPECT_TRUE(t.in_order);
+  EXPECT_EQ(t.samples, 1000u);
+  ASSERT_EQ(t.gap_list.size(), 1u);
+  EXPECT_EQ(t.gap_list[0].source, palp::GapSource::host_queue);
+  EXPECT_EQ(t.gap_list[0].first_index, 1000u);
+  const palp::HealthCounters h = probe.health();
+  EXPECT_EQ(h.host_queue_dropped, t.gap_list[0].count);
+  EXPECT_EQ(h.host_queue_max, 1000u);
+}
+
+TEST(ProbeStream, TheClockMappingFollowsTheSimulatorsPaceAndItsChange) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  ASSERT_EQ(sim.control("pace 1"), "ok");
+  palp::Probe probe(sim.uri());
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_NEAR(probe.clock().drift, 0.0, 0.02) << "real time: one host second per device second";
+  ASSERT_EQ(sim.control("pace 2"), "ok");
+  std::this_thread::sleep_for(3000ms);
+  const palp::ClockMapping c = probe.clock();
+  EXPECT_NEAR(c.drift, -0.5, 0.03) << "twice real time: half a host second per device second";
+  EXPECT_GE(c.points, 3u);
+  // a sample's host time is close to when it was taken
+  probe.configure_stream({.rate_Hz = 1000.0});
+  probe.start_stream();
+  auto item = probe.next(2s);
+  ASSERT_TRUE(item.has_value());
+  const double now = std::chrono::duration<double>(
+                         std::chrono::steady_clock::now().time_since_epoch()).count();
+  const Sample& s = std::get<Sample>(*item);
+  EXPECT_NEAR(s.t_host_s, now, 0.2);
+}
+
+TEST(ProbeStream, ARestartedSimulatorRestoresTheSessionAndTheStreamAfterAReconnectGap) {
+  auto sim = std::make_unique<SimProcess>(std::vector<std::string>{}, false);
+  ASSERT_TRUE(sim->ok());
+  const std::uint16_t port = sim->device_port();
+  palp::Probe probe(sim->uri());
+  probe.configure_stream({.rate_Hz = 1000.0});
+  probe.start_stream();
+  Tally t;
+  while (t.samples < 200) t.add(*probe.next(5s));
+  sim->stop();
+  sim = std::make_unique<SimProcess>(std::vector<std::string>{}, false, port);
+  ASSERT_TRUE(sim->ok()) << sim->banner();
+  std::vector<StreamItem> after;
+  const auto end = std::chrono::steady_clock::now() + 10s;
+  std::uint64_t new_samples = 0;
+  while (new_samples < 200 && std::chrono::steady_clock::now() < end) {
+    auto item = probe.next(1s);
+    if (!item) continue;
+    t.add(*item);
+    if (std::holds_alternative<Sample>(*item)) ++new_samples;
+  }
+  EXPECT_TRUE(t.in_order);
+  ASSERT_FALSE(t.gap_list.empty());
+  const Gap& g = t.gap_list.back();
+  EXPECT_EQ(g.source, palp::GapSource::reconnect);
+  EXPECT_FALSE(g.count_known) << "a restarted simulator's clock starts again at 0";
+  EXPECT_GE(new_samples, 200u);
+  EXPECT_EQ(probe.health().reconnects, 1u);
+  EXPECT_EQ(probe.status().state, palp::proto::DeviceState::idle);
+}
+
+TEST(ProbeStream, ALinkThatStaysDownFailsEveryCallWithWhyAndForHowLong) {
+  auto sim = std::make_unique<SimProcess>(std::vector<std::string>{}, false);
+  ASSERT_TRUE(sim->ok());
+  palp::ConnectOptions o;
+  o.reconnect_for = 300ms;
+  palp::Probe probe(sim->uri(), o);
+  sim->stop();
+  std::this_thread::sleep_for(800ms);
+  try {
+    probe.status();
+    FAIL() << "status() answered without a device";
+  } catch (const palp::ConnectionError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("could not be restored within 300 ms"));
+    EXPECT_THAT(e.what(), HasSubstr("palp-sim"));
+  }
+}
+
+}  // namespace
