@@ -5,6 +5,7 @@
 
 #include "palp/protocol/stream.hpp"
 #include "probe/probe_impl.hpp"
+#include "probe/stream_check.hpp"
 
 namespace palp {
 
@@ -211,41 +212,9 @@ void Probe::clear_fault() {
 
 StreamInfo Probe::configure_stream(const StreamSettings& st) {
   Session& s = impl_->s();
-  const DeviceInfo& d = impl_->info;
-  auto num = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%g", v);
-    return std::string(b);
-  };
-  if (!(st.rate_Hz > 0) || st.rate_Hz > d.max_stream_rate_Hz)
-    throw ConfigError("stream rate " + num(st.rate_Hz) + " Hz is outside (0, " +
-                      num(d.max_stream_rate_Hz) + "] Hz, the device's maximum");
-  const double dec = d.control_rate_Hz / st.rate_Hz;
-  const double dec_whole = std::round(dec);
-  if (std::fabs(dec - dec_whole) > 1e-9 * dec || dec_whole > 65535)
-    throw ConfigError("stream rate " + num(st.rate_Hz) + " Hz does not divide the control rate " +
-                      num(d.control_rate_Hz) + " Hz (use " + num(d.control_rate_Hz / std::ceil(dec)) +
-                      " Hz or " + num(d.control_rate_Hz / std::max(1.0, std::floor(dec))) + " Hz)");
-  if (st.channels == 0 || (st.channels & ~channel::all) != 0)
-    throw ConfigError("stream channels 0x" + std::to_string(st.channels) +
-                      ": choose at least one of the 11 channel bits (stream.hpp, palp::channel)");
-  const std::size_t most = proto::max_batch_samples(st.channels);
-  std::size_t batch = st.batch_samples;
-  if (batch == 0) batch = std::clamp<std::size_t>(static_cast<std::size_t>(st.rate_Hz / 25.0), 1, most);
-  if (batch > most)
-    throw ConfigError("stream batch of " + std::to_string(batch) + " samples: at most " +
-                      std::to_string(most) + " samples of these channels fit one batch");
-  const std::uint32_t need = proto::stream_wire_bytes_per_s(st.channels, st.rate_Hz, batch);
-  if (need > s.transport_bytes_per_s())
-    throw ConfigError("stream of " + std::to_string(proto::bytes_per_sample(st.channels)) +
-                      "-byte samples at " + num(st.rate_Hz) + " Hz needs " + std::to_string(need) +
-                      " bytes/s on the wire; " + s.uri() + " carries at most " +
-                      std::to_string(s.transport_bytes_per_s()) +
-                      " bytes/s: lower the rate or stream fewer channels");
-  proto::StreamConfigure c;
-  c.channels = st.channels;
-  c.decimation = static_cast<std::uint16_t>(dec_whole);
-  c.batch_samples = static_cast<std::uint16_t>(batch);
+  const proto::StreamConfigure c =
+      detail::check_stream(st, impl_->info.control_rate_Hz, impl_->info.max_stream_rate_Hz,
+                           s.transport_bytes_per_s(), s.uri());
   const auto cfg = expect<proto::StreamConfig>(s.request(c, s.default_timeout()), "StreamConfigure");
   s.stream_configured(c);
   StreamInfo& info = impl_->stream;
