@@ -1,0 +1,80 @@
+# Installation and the CMake package (native scope only).
+#
+#   cmake --install build/<preset> --prefix /opt/palp
+#
+# installs, under the prefix:
+#   lib/libpalp_sdk.a, libpalp_protocol.a, libpalp_protocol_text.a  (the SDK and what it links)
+#   include/palp/*.hpp, include/palp/protocol/*.hpp                  (host/include, protocol/include)
+#   lib/cmake/palp/palpConfig.cmake (+ version, targets)             find_package(palp) -> palp::sdk
+#   bin/palpctl, bin/palp-sim                                        the tools
+#   lib/udev/rules.d/70-palp.rules                                   so a non-root user can open
+#                                                                    the controller (udev reads
+#                                                                    /usr/lib/udev/rules.d; with
+#                                                                    another prefix, copy it to
+#                                                                    /etc/udev/rules.d)
+# Components: "sdk" (libraries, headers, package files) and "tools" (binaries, udev rules); an
+# install without --component installs both.
+if(NOT PALP_SCOPE STREQUAL "native" OR NOT TARGET palp_sdk)
+  return()
+endif()
+
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(PALP_NLOHMANN_JSON_MIN 3.10)  # as host/CMakeLists.txt asks for
+set(PALP_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/palp CACHE STRING
+    "Where palpConfig.cmake is installed, relative to the prefix")
+# Not CMAKE_INSTALL_LIBDIR: udev looks in lib/udev/rules.d, never in a multiarch directory.
+set(PALP_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING
+    "Where the udev rules are installed, relative to the prefix")
+
+# An exported target may not carry a source-tree include path. The protocol libraries were
+# declared with plain paths (they are also built for the firmware, which installs nothing), so
+# those paths are split here into their build-tree form and the installed include directory.
+# Paths already written with $<BUILD_INTERFACE:...> (as palp_sdk's are) are left alone.
+function(palp_exportable_includes target)
+  get_target_property(dirs ${target} INTERFACE_INCLUDE_DIRECTORIES)
+  if(NOT dirs OR dirs MATCHES "BUILD_INTERFACE")
+    return()
+  endif()
+  set(fixed)
+  foreach(d IN LISTS dirs)
+    list(APPEND fixed "$<BUILD_INTERFACE:${d}>")
+  endforeach()
+  list(APPEND fixed "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+  set_target_properties(${target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${fixed}")
+endfunction()
+palp_exportable_includes(palp_protocol)
+palp_exportable_includes(palp_protocol_text)
+
+set_target_properties(palp_sdk PROPERTIES EXPORT_NAME sdk)
+set_target_properties(palp_protocol PROPERTIES EXPORT_NAME protocol)
+set_target_properties(palp_protocol_text PROPERTIES EXPORT_NAME protocol_text)
+
+install(TARGETS palp_sdk palp_protocol palp_protocol_text
+        EXPORT palpTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
+                  ${PROJECT_SOURCE_DIR}/protocol/host/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT sdk
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+install(EXPORT palpTargets NAMESPACE palp:: DESTINATION ${PALP_INSTALL_CMAKEDIR} COMPONENT sdk)
+
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/palpConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/palpConfig.cmake
+                              INSTALL_DESTINATION ${PALP_INSTALL_CMAKEDIR}
+                              PATH_VARS CMAKE_INSTALL_BINDIR)
+# Before 1.0 a minor version may break the API (DESIGN.md: major = breaking once released).
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/palpConfigVersion.cmake
+                                 VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/palpConfig.cmake ${PROJECT_BINARY_DIR}/palpConfigVersion.cmake
+        DESTINATION ${PALP_INSTALL_CMAKEDIR} COMPONENT sdk)
+
+foreach(tool palpctl palp-sim)
+  if(TARGET ${tool})
+    install(TARGETS ${tool} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+  endif()
+endforeach()
+# OPTIONAL: the rules file may not exist yet in this checkout; the install skips it then.
+install(FILES ${PROJECT_SOURCE_DIR}/host/udev/70-palp.rules
+        DESTINATION ${PALP_UDEV_RULES_DIR} COMPONENT tools OPTIONAL)
