@@ -10,7 +10,6 @@
 #include <limits>
 
 #include "palp/error.hpp"
-#include "palp/protocol/crc32.hpp"
 #include "palp/recording.hpp"
 #include "recording/internal.hpp"
 
@@ -26,8 +25,8 @@ class LineReader {
  public:
   LineReader(const fs::path& path, const std::string& name) : name_(name) {
     file_ = std::fopen(path.c_str(), "rb");
-    if (file_ == nullptr) throw RecordingError(name_, 0, std::string("cannot open: ") +
-                                                             std::strerror(errno));
+    if (file_ == nullptr)
+      throw RecordingError(name_, 0, std::string("cannot open: ") + std::strerror(errno));
     buffer_.resize(1u << 20);
   }
   ~LineReader() { std::fclose(file_); }
@@ -54,7 +53,7 @@ class LineReader {
   std::size_t line_number() const { return line_number_; }
   bool empty_file() const { return eof_ && total_bytes_ == 0; }
   /// Valid once next() has returned false.
-  std::uint32_t crc32() const { return proto::crc32_final(crc_state_); }
+  std::uint32_t crc32() const { return rd::Crc32::final(crc_state_); }
 
  private:
   bool give(std::string_view& line, const char* begin, std::size_t length) {
@@ -74,8 +73,7 @@ class LineReader {
         throw RecordingError(name_, 0, std::string("cannot read: ") + std::strerror(errno));
       eof_ = true;
     }
-    crc_state_ = proto::crc32_update(
-        crc_state_, reinterpret_cast<const std::uint8_t*>(buffer_.data() + end_), got);
+    crc_state_ = rd::Crc32::update(crc_state_, buffer_.data() + end_, got);
     end_ += got;
     total_bytes_ += got;
   }
@@ -85,7 +83,7 @@ class LineReader {
   std::string buffer_;
   std::size_t pos_ = 0, end_ = 0, line_number_ = 0, total_bytes_ = 0;
   bool eof_ = false;
-  std::uint32_t crc_state_ = proto::kCrc32Init;
+  std::uint32_t crc_state_ = rd::Crc32::kInit;
 };
 
 std::string_view trim(std::string_view s) {
@@ -205,10 +203,10 @@ class CsvReader {
     std::string_view line;
     do {
       if (!lines_.next(line))
-        throw RecordingError(name_, 0, lines_.empty_file()
-                                           ? "the file is empty; a recording starts with a "
-                                             "header row naming its columns (t_s, i_A, z_mm)"
-                                           : "the file has no header row, only comments");
+        throw RecordingError(name_, 0,
+                             lines_.empty_file() ? "the file is empty; a recording starts with a "
+                                                   "header row naming its columns (t_s, i_A, z_mm)"
+                                                 : "the file has no header row, only comments");
     } while (skipped(line));
     header_line_ = lines_.line_number();
     separator_ = line.find('\t') != std::string_view::npos ? '\t' : ',';
@@ -231,13 +229,13 @@ class CsvReader {
     for (const Column c : {Column::t_s, Column::i_A, Column::z_mm})
       if (!seen[static_cast<std::size_t>(c)]) missing.push_back(column_name(c));
     if (!missing.empty()) {
-      std::string problem = std::string("the header lacks the required column") +
-                            (missing.size() > 1 ? "s " : " ") + join(missing) +
-                            "; a recording needs t_s, i_A and z_mm (the header has: " +
-                            join(names) + ")";
+      std::string problem =
+          std::string("the header lacks the required column") + (missing.size() > 1 ? "s " : " ") +
+          join(missing) + "; a recording needs t_s, i_A and z_mm (the header has: " + join(names) +
+          ")";
       if (separator_ == ',' && line.find(';') != std::string_view::npos)
-        problem += "; the columns look separated by semicolons, but a recording uses commas "
-                   "or tabs";
+        problem += "; the columns look separated by semicolons, but a recording uses commas or "
+                   "tabs";
       fail(problem);
     }
     if (!seen[static_cast<std::size_t>(Column::sample_index)]) r_.sample_index.reset();
@@ -268,7 +266,8 @@ class CsvReader {
              " has a decimal comma; numbers need a decimal point (" + fixed + ")");
       }
       case CellProblem::not_whole: fail(column + ": " + cell_text(cell) + " is not a whole number");
-      case CellProblem::out_of_range: fail(column + ": " + cell_text(cell) + " is out of range " + range);
+      case CellProblem::out_of_range:
+        fail(column + ": " + cell_text(cell) + " is out of range " + range);
       case CellProblem::not_number:
       case CellProblem::none: break;
     }
@@ -300,7 +299,8 @@ class CsvReader {
       case Column::rep: return store_int(c, cell, r_.rep);
       default:
         return store_double(
-            c, cell, *r_.p_Pa[static_cast<std::size_t>(c) - static_cast<std::size_t>(Column::p1_Pa)]);
+            c, cell,
+            *r_.p_Pa[static_cast<std::size_t>(c) - static_cast<std::size_t>(Column::p1_Pa)]);
     }
   }
 

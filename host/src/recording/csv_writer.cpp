@@ -15,7 +15,6 @@
 #include <system_error>
 
 #include "palp/error.hpp"
-#include "palp/protocol/crc32.hpp"
 #include "palp/recording.hpp"
 #include "recording/internal.hpp"
 
@@ -38,8 +37,8 @@ std::FILE* create_temporary(const fs::path& final_path, fs::path& temporary) {
   static std::atomic<unsigned> counter{0};
   for (int attempt = 0; attempt < 1000; ++attempt) {
     temporary = final_path.parent_path() /
-                ("." + final_path.filename().string() + ".tmp-" + std::to_string(::getpid()) +
-                 "-" + std::to_string(counter.fetch_add(1)));
+                ("." + final_path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                 std::to_string(counter.fetch_add(1)));
     if (std::FILE* f = std::fopen(temporary.c_str(), "wbx")) return f;
     if (errno != EEXIST)
       throw RecordingError(final_path.string(), 0,
@@ -86,7 +85,7 @@ struct RecordingWriter::Impl {
   WriterOptions options;
   std::FILE* csv = nullptr;  ///< open until finish() closes it
   std::string buffer;
-  std::uint32_t crc_state = proto::kCrc32Init;
+  std::uint32_t crc_state = rd::Crc32::kInit;
   std::uint64_t rows = 0;
   double last_t_s = 0;
   bool finished = false;
@@ -103,8 +102,7 @@ struct RecordingWriter::Impl {
   }
 
   void write_out() {
-    crc_state = proto::crc32_update(crc_state, reinterpret_cast<const std::uint8_t*>(buffer.data()),
-                                    buffer.size());
+    crc_state = rd::Crc32::update(crc_state, buffer.data(), buffer.size());
     if (std::fwrite(buffer.data(), 1, buffer.size(), csv) != buffer.size())
       throw RecordingError(csv_final.string(), 0, "cannot write: " + errno_text());
     buffer.clear();
@@ -113,14 +111,15 @@ struct RecordingWriter::Impl {
   void refuse_existing() const {
     for (const fs::path& p : {csv_final, json_final})
       if (fs::exists(p))
-        throw ConfigError(p.string() + " already exists; choose another name, or pass "
+        throw ConfigError(p.string() +
+                          " already exists; choose another name, or pass "
                           "WriterOptions{.overwrite = palp::Overwrite::yes} to replace it");
   }
 
   [[noreturn]] void bad_value(std::string_view column, double v) const {
     throw ConfigError(csv_final.string() + ": row " + std::to_string(rows) + ": " +
-                      std::string(column) +
-                      " is " + rd::shortest(v) + "; a recording holds finite numbers only");
+                      std::string(column) + " is " + rd::shortest(v) +
+                      "; a recording holds finite numbers only");
   }
 
   void check(const RecordingRow& row) const {
@@ -212,11 +211,10 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
   std::FILE* csv = w.csv;
   w.csv = nullptr;
   if (!sync_and_close(csv)) throw RecordingError(csv_name, 0, "cannot write: " + errno_text());
-  s.csv_crc32 = proto::crc32_final(w.crc_state);
+  s.csv_crc32 = rd::Crc32::final(w.crc_state);
 
   const std::string text =
-      rd::sidecar_document(s).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-      "\n";
+      rd::sidecar_document(s).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   std::FILE* json = create_temporary(w.json_final, w.json_temporary);
   const bool written = std::fwrite(text.data(), 1, text.size(), json) == text.size();
   if (!sync_and_close(json) || !written)
@@ -225,14 +223,13 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
   std::error_code ec;
   fs::rename(w.json_temporary, w.json_final, ec);
   if (ec)
-    throw RecordingError(w.json_final.string(), 0, "cannot rename the finished sidecar into "
-                                                   "place: " + ec.message());
+    throw RecordingError(w.json_final.string(), 0,
+                         "cannot rename the finished sidecar into place: " + ec.message());
   fs::rename(w.csv_temporary, w.csv_final, ec);
   if (ec) {
     std::error_code ignored;
     fs::remove(w.json_final, ignored);  // no sidecar without its CSV
-    throw RecordingError(csv_name, 0, "cannot rename the finished CSV into place: " +
-                                          ec.message());
+    throw RecordingError(csv_name, 0, "cannot rename the finished CSV into place: " + ec.message());
   }
   w.finished = true;
   sync_directory(w.csv_final.parent_path());

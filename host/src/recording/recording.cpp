@@ -1,6 +1,7 @@
 // Recording in memory: its columns, append(), the file names, write_recording().
-#include "palp/error.hpp"
 #include "palp/recording.hpp"
+
+#include "palp/error.hpp"
 
 namespace palp {
 namespace fs = std::filesystem;

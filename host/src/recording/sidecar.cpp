@@ -21,10 +21,9 @@ using nlohmann::ordered_json;
 namespace {
 
 constexpr std::array<std::string_view, 11> kKnownKeys = {
-    "schema",       "sdk_version",        "created_utc",
-    "program",      "device",             "calibration",
-    "stroke_origin_z_mm", "stroke_origin_z_mm_reason", "zeroing",
-    "csv_rows",     "csv_crc32"};
+    "schema",  "sdk_version", "created_utc",        "program",
+    "device",  "calibration", "stroke_origin_z_mm", "stroke_origin_z_mm_reason",
+    "zeroing", "csv_rows",    "csv_crc32"};
 /// The `<key>_reason` of a null object key, when the caller gave none.
 constexpr std::string_view kDefaultReason = "not given to the recording writer";
 constexpr std::string_view kSchemaPrefix = "palp.recording/";
@@ -72,9 +71,9 @@ class SidecarParser {
 
   void check_schema() const {
     const json* v = find("schema");
-    const std::string expected = "(a palp recording sidecar has \"schema\": " +
-                                 in_quotes(kRecordingSchema) + ")";
-    if (v == nullptr) fail("the key \"schema\" is missing " + expected);
+    if (v == nullptr)
+      fail("the key \"schema\" is missing; a palp recording sidecar has \"schema\": " +
+           in_quotes(kRecordingSchema));
     if (!v->is_string()) wrong_type("schema", "a string", *v);
     const std::string& text = v->get_ref<const std::string&>();
     unsigned major = 0;
@@ -82,7 +81,8 @@ class SidecarParser {
     const char* last = text.data() + text.size();
     const auto r = std::from_chars(first, last, major);
     if (!text.starts_with(kSchemaPrefix) || r.ec != std::errc() || r.ptr != last)
-      fail("\"schema\" is " + in_quotes(text) + ": not a palp recording sidecar " + expected);
+      fail("\"schema\" is " + in_quotes(text) + ", not " + in_quotes(kRecordingSchema) +
+           ": this is not a palp recording sidecar");
     if (major != 1)
       fail("\"schema\" is " + in_quotes(text) + ", which this SDK cannot read (it reads " +
            std::string(kRecordingSchema) + "); update the SDK");
@@ -108,8 +108,9 @@ class SidecarParser {
   void read_stroke_origin(Sidecar& s) const {
     const json* v = find("stroke_origin_z_mm");
     if (v == nullptr)
-      fail("the key \"stroke_origin_z_mm\" is missing (a number, or null with "
-           "\"stroke_origin_z_mm_reason\")");
+      fail(
+          "the key \"stroke_origin_z_mm\" is missing (a number, or null with "
+          "\"stroke_origin_z_mm_reason\")");
     if (v->is_number()) {
       s.stroke_origin_z_mm = v->get<double>();
     } else if (!v->is_null()) {
@@ -136,8 +137,8 @@ class SidecarParser {
       s.csv_rows = v->get<std::uint64_t>();
     }
     if (const json* v = find("csv_crc32")) {
-      const auto crc = v->is_string() ? rd::parse_crc32_hex(v->get_ref<const std::string&>())
-                                      : std::nullopt;
+      const auto crc =
+          v->is_string() ? rd::parse_crc32_hex(v->get_ref<const std::string&>()) : std::nullopt;
       if (!crc) wrong_type("csv_crc32", "a string of 8 hex digits", *v);
       s.csv_crc32 = crc;
     }
@@ -218,9 +219,9 @@ ordered_json rd::sidecar_document(const Sidecar& s) {
     d["stroke_origin_z_mm"] = *s.stroke_origin_z_mm;
   } else {
     d["stroke_origin_z_mm"] = nullptr;
-    d["stroke_origin_z_mm_reason"] =
-        s.stroke_origin_z_mm_reason.empty() ? std::string(kDefaultReason)
-                                            : s.stroke_origin_z_mm_reason;
+    d["stroke_origin_z_mm_reason"] = s.stroke_origin_z_mm_reason.empty()
+                                         ? std::string(kDefaultReason)
+                                         : s.stroke_origin_z_mm_reason;
   }
 
   if (!s.zeroing.is_array())
@@ -259,8 +260,8 @@ Sidecar read_sidecar(const std::filesystem::path& json_path) {
   } catch (const json::parse_error& e) {
     // e.byte counts the characters read, the offending one included.
     const std::size_t at = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    const std::size_t line = 1 + static_cast<std::size_t>(
-                                     std::count(text.begin(), text.begin() + at, '\n'));
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + at, '\n'));
     const std::size_t newline = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
     const std::size_t column = newline == std::string::npos ? at + 1 : at - newline;
     // nlohmann's text: "[json.exception.parse_error.101] parse error at line L, column C: what".
