@@ -102,7 +102,7 @@ class ColumnSet {
 /// One row of a recording: one sample, in the recording's lab units.
 struct RecordingRow {
   std::uint64_t sample_index = 0;
-  double t_s = 0;                ///< device time, s
+  double t_s = 0;                ///< device time, s (µs / 1e6 gives the shortest text)
   double i_cmd_A = 0;            ///< commanded coil current, A
   double i_A = 0;                ///< measured coil current, A
   double z_mm = 0;               ///< coil position, mm, +z into the specimen
