@@ -1,0 +1,122 @@
+// palpctl monitor: live values a few times a second until Ctrl-C or --seconds. Each line is the
+// mean over the interval of the streamed samples, with the device's state and fault.
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "common.hpp"
+
+namespace palpctl {
+
+namespace {
+struct MonitorOptions {
+  double seconds = 0;
+  double interval_s = 0.25;
+  double rate_Hz = 1000;
+};
+
+struct Means {
+  std::size_t n = 0;
+  std::uint64_t missing = 0;
+  double i_cmd_A = 0, i_A = 0, z_mm = 0;
+  std::array<double, 6> p_Pa{};
+};
+
+Means average(const std::vector<palp::StreamItem>& items) {
+  Means m;
+  for (const auto& item : items) {
+    if (const auto* g = std::get_if<palp::Gap>(&item)) {
+      m.missing += g->count;
+      continue;
+    }
+    const auto& s = std::get<palp::Sample>(item);
+    ++m.n;
+    m.i_cmd_A += s.i_cmd_A;
+    m.i_A += s.i_A;
+    m.z_mm += mm_from_m(s.z_m);
+    for (std::size_t k = 0; k < 6; ++k) m.p_Pa[k] += s.p_Pa[k];
+  }
+  if (m.n > 0) {
+    const double n = static_cast<double>(m.n);
+    m.i_cmd_A /= n;
+    m.i_A /= n;
+    m.z_mm /= n;
+    for (auto& p : m.p_Pa) p /= n;
+  }
+  return m;
+}
+
+int monitor(const Context& ctx, const MonitorOptions& o) {
+  auto probe = ctx.connect();
+  probe.configure_stream({.rate_Hz = o.rate_Hz});
+  probe.start_stream();
+  if (!ctx.json)
+    std::printf("%10s %-9s %-14s %8s %8s %9s %8s %8s %8s %8s %8s %8s\n", "t_device_s", "state",
+                "fault", "i_cmd_A", "i_A", "z_mm", "p1_Pa", "p2_Pa", "p3_Pa", "p4_Pa", "p5_Pa",
+                "p6_Pa");
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto interval = std::chrono::duration<double>(o.interval_s);
+  auto next = t0;
+  std::vector<palp::StreamItem> items;
+  while (!interrupted()) {
+    next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(interval);
+    std::this_thread::sleep_until(next);
+    items.clear();
+    probe.drain(items);
+    const Means m = average(items);
+    const auto st = probe.status();
+    if (ctx.json) {
+      json j = {{"t_device_s", st.t_device_s}, {"state", name_of(st.state)},
+                {"fault", name_of(st.fault)},  {"program", name_of(st.program)},
+                {"samples", m.n},              {"samples_missing", m.missing}};
+      if (m.n > 0) {
+        j["i_cmd_A"] = m.i_cmd_A;
+        j["i_A"] = m.i_A;
+        j["z_mm"] = m.z_mm;
+        j["p_Pa"] = m.p_Pa;
+      } else {
+        for (const char* k : {"i_cmd_A", "i_A", "z_mm", "p_Pa"}) {
+          j[k] = nullptr;
+          j[std::string(k) + "_reason"] = "no samples in this interval";
+        }
+      }
+      print_json(j, true);
+    } else {
+      std::printf("%10.3f %-9s %-14s %8.4f %8.4f %9.4f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f%s\n",
+                  st.t_device_s, name_of(st.state).c_str(), name_of(st.fault).c_str(),
+                  m.i_cmd_A, m.i_A, m.z_mm, m.p_Pa[0], m.p_Pa[1], m.p_Pa[2], m.p_Pa[3],
+                  m.p_Pa[4], m.p_Pa[5], m.missing > 0 ? "  (samples lost)" : "");
+      std::fflush(stdout);
+    }
+    if (o.seconds > 0 &&
+        std::chrono::steady_clock::now() - t0 >= std::chrono::duration<double>(o.seconds))
+      break;
+  }
+  probe.stop_stream();
+  return kOk;  // Ctrl-C is how a monitor normally ends
+}
+}  // namespace
+
+void add_monitor_command(CLI::App& app, Context& ctx) {
+  auto o = std::make_shared<MonitorOptions>();
+  auto* cmd = app.add_subcommand(
+      "monitor", "Print live values (means over each interval: i_cmd_A, i_A, z_mm, p1..p6_Pa, "
+                 "state, fault) until Ctrl-C or --seconds; --json prints one object per line");
+  cmd->add_option("--seconds", o->seconds, "Stop after this long, s (0: until Ctrl-C)")
+      ->check(kNonNegative)
+      ->capture_default_str();
+  cmd->add_option("--interval-s", o->interval_s, "Time between lines, s")
+      ->check(CLI::Range(0.05, 60.0))
+      ->capture_default_str();
+  cmd->add_option("--rate-Hz", o->rate_Hz,
+                  "Stream sample rate the means are taken over, Hz (divides the control rate)")
+      ->check(kPositive)
+      ->capture_default_str();
+  cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return monitor(ctx, *o); }; });
+}
+
+}  // namespace palpctl

@@ -1,0 +1,281 @@
+// palpctl: exit codes, error mapping, lab-unit JSON of the SDK's structs, progress, Ctrl-C.
+#include "common.hpp"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdlib>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+namespace palpctl {
+
+namespace {
+volatile std::sig_atomic_t g_interrupted = 0;
+void on_interrupt(int) { g_interrupted = 1; }
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+int report(const Context& ctx, int code, const char* kind, const std::string& message) {
+  std::cerr << "palpctl: " << message << '\n';
+  if (ctx.json)
+    print_json({{"error", {{"kind", kind}, {"message", message}, {"exit_code", code}}}});
+  return code;
+}
+}  // namespace
+
+palp::Probe Context::connect() const {
+  palp::ConnectOptions o;
+  o.timeout = std::chrono::milliseconds(static_cast<long>(std::lround(timeout_s * 1e3)));
+  o.host_software = std::string("palpctl ") + palp::sdk_version();
+  return palp::Probe(uri, o);
+}
+
+namespace {
+CLI::Validator number_check(bool allow_zero) {
+  return CLI::Validator(
+      [allow_zero](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end == nullptr || *end != '\0' || !std::isfinite(v))
+          return "'" + text + "' is not a number";
+        if (allow_zero ? v < 0 : v <= 0)
+          return "'" + text + "' must be " + (allow_zero ? "0 or more" : "above 0");
+        return {};
+      },
+      allow_zero ? "NONNEGATIVE" : "POSITIVE");
+}
+}  // namespace
+
+const CLI::Validator kPositive = number_check(false);
+const CLI::Validator kNonNegative = number_check(true);
+
+int run_guarded(const Context& ctx, const std::function<int()>& action) {
+  try {
+    return action();
+  } catch (const palp::ConfigError& e) {
+    return report(ctx, kUsage, "config", e.what());
+  } catch (const palp::ConnectionError& e) {
+    return report(ctx, kConnection, "connection", e.what());
+  } catch (const palp::TimeoutError& e) {
+    return report(ctx, kTimeout, "timeout", e.what());
+  } catch (const palp::VersionError& e) {
+    return report(ctx, kVersion, "version", e.what());
+  } catch (const palp::FaultError& e) {
+    return report(ctx, kFault, "fault", e.what());
+  } catch (const palp::DeviceError& e) {
+    const bool faulted = e.code() == static_cast<std::uint16_t>(palp::proto::ErrorCode::faulted) ||
+                         e.code() == static_cast<std::uint16_t>(palp::proto::ErrorCode::fault_persists);
+    return report(ctx, faulted ? kFault : kRuntime, faulted ? "fault" : "device", e.what());
+  } catch (const palp::Error& e) {
+    return report(ctx, kRuntime, "error", e.what());
+  } catch (const std::exception& e) {
+    return report(ctx, kRuntime, "error", e.what());
+  }
+}
+
+void print_json(const json& j, bool compact) {
+  std::cout << (compact ? j.dump() : j.dump(2)) << '\n' << std::flush;
+}
+
+void catch_interrupts() {
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+}
+bool interrupted() { return g_interrupted != 0; }
+
+double f32(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
+  *r.ptr = '\0';
+  return std::strtod(buf, nullptr);
+}
+
+std::int32_t counts_from_mm(double mm) { return static_cast<std::int32_t>(std::lround(mm * 1e3)); }
+
+json to_json(const palp::DeviceInfo& d) {
+  return {{"serial", d.serial},
+          {"board", d.board},
+          {"firmware_version", d.firmware_version},
+          {"git_hash", d.git_hash},
+          {"protocol_version", std::to_string(d.protocol_major) + "." +
+                                   std::to_string(d.protocol_minor)},
+          {"schema_hash", d.schema_hash},
+          {"simulated", d.has(palp::proto::Capability::simulated)},
+          {"pressure_channels", d.has(palp::proto::Capability::pressure) ? 6 : 0},
+          {"max_current_A", d.max_current_A},
+          {"control_rate_Hz", d.control_rate_Hz},
+          {"max_stream_rate_Hz", d.max_stream_rate_Hz},
+          {"heartbeat_timeout_s", d.heartbeat_timeout_s},
+          {"max_payload_bytes", d.max_payload}};
+}
+
+json to_json(const palp::Handshake& h) {
+  return {{"verdict", h.missing_features ? "compatible_missing_features" : "compatible"},
+          {"missing", h.missing},
+          {"message", h.message}};
+}
+
+json to_json(const palp::Params& p) {
+  return {{"current_clamp_A", f32(p.current_clamp_A)},
+          {"i2t_continuous_A", f32(p.i2t_continuous_A)},
+          {"i2t_limit_A2_s", f32(p.i2t_limit_A2s)},
+          {"i2t_tau_s", f32(p.i2t_tau_s)},
+          {"travel_min_mm", mm_from_counts(p.travel_min_counts)},
+          {"travel_max_mm", mm_from_counts(p.travel_max_counts)},
+          {"heartbeat_timeout_s", s_from_ms(p.heartbeat_timeout_ms)},
+          {"control_rate_Hz", p.control_rate_Hz},
+          {"supply_V", f32(p.supply_V)},
+          {"contact_output", name_of(p.contact_output)},
+          {"contact_output_hold_s", s_from_ms(p.contact_output_hold_ms)}};
+}
+
+namespace {
+json f32s(const palp::proto::Arr<float, 6>& a) {
+  json j = json::array();
+  for (float v : a) j.push_back(f32(v));
+  return j;
+}
+}  // namespace
+
+json to_json(const palp::Calibration& c) {
+  json table = json::array();
+  for (std::size_t k = 0; k < c.kf_position_counts.size && k < c.kf_N_per_A.size; ++k)
+    table.push_back({{"position_mm", mm_from_counts(c.kf_position_counts.items[k])},
+                     {"kf_N_per_A", f32(c.kf_N_per_A.items[k])}});
+  json j = {{"layout_version", c.layout_version},
+            {"kf_table", table},
+            {"current_offset_A", f32(c.current_offset_A)},
+            {"current_gain", f32(c.current_gain)},
+            {"pressure_offset_Pa", f32s(c.pressure_offset_Pa)},
+            {"pressure_gain", f32s(c.pressure_gain)},
+            {"spring_k_N_per_mm", N_per_mm_from_N_per_m(f32(c.spring_k_N_per_m))},
+            {"stroke_origin_valid", c.stroke_origin_valid != 0}};
+  if (c.stroke_origin_valid != 0) {
+    j["stroke_origin_mm"] = mm_from_counts(c.stroke_origin_counts);
+  } else {
+    j["stroke_origin_mm"] = nullptr;
+    j["stroke_origin_mm_reason"] = "not homed (palpctl calibrate home)";
+  }
+  return j;
+}
+
+json to_json(const palp::HealthCounters& h) {
+  json device = nullptr;
+  if (h.device_valid)
+    device = {{"time_s", static_cast<double>(h.device_time_us) * 1e-6},
+              {"frames_rx", h.device_frames_rx},
+              {"frames_tx", h.device_frames_tx},
+              {"rx_rejected", h.device_rx_rejected},
+              {"isr_queue_overflows", h.isr_queue_overflows},
+              {"stream_backlog_max", h.stream_backlog_max},
+              {"stream_samples_lost", h.stream_samples_lost},
+              {"usb_in_not_drained", h.usb_in_not_drained},
+              {"tx_frames_dropped", h.tx_frames_dropped},
+              {"control_overruns", h.control_overruns},
+              {"stream_gaps", h.device_stream_gaps}};
+  json j = {{"device", device},
+            {"host",
+             {{"frames_rx", h.host_frames_rx},
+              {"rx_rejected", h.host_rx_rejected},
+              {"samples_received", h.host_samples_received},
+              {"samples_missing", h.host_samples_missing},
+              {"queue_dropped", h.host_queue_dropped},
+              {"queue_max", h.host_queue_max},
+              {"gaps", h.host_gaps},
+              {"reconnects", h.reconnects}}}};
+  if (!h.device_valid) j["device_reason"] = "no Health reply received";
+  return j;
+}
+
+json to_json(const palp::Status& s) {
+  return {{"t_device_s", s.t_device_s},
+          {"state", name_of(s.state)},
+          {"fault", name_of(s.fault)},
+          {"program", name_of(s.program)},
+          {"program_state", name_of(s.program_state)},
+          {"i_cmd_A", s.i_cmd_A},
+          {"i_A", s.i_A},
+          {"z_mm", mm_from_m(s.z_m)},
+          {"i2t_fraction", s.i2t_fraction},
+          {"streaming", s.streaming},
+          {"status_bits", s.status_bits}};
+}
+
+json to_json(const palp::FaultInfo& f) {
+  return {{"reason", name_of(f.reason)},
+          {"latched", f.reason != palp::proto::FaultReason::none},
+          {"t_device_s", f.t_device_s},
+          {"detail", f.detail},
+          {"text", f.text}};
+}
+
+json to_json(const palp::ZeroingRecord& z) {
+  // the recording sidecar's form (palp/recording.hpp): values with their unit, lab units
+  // (offsets are the calibration block's f32 values; the origin is a whole encoder count)
+  const bool home = z.what == "home";
+  json values = json::array();
+  for (double v : z.values)
+    values.push_back(home ? mm_from_counts(std::llround(v * 1e6)) : f32(static_cast<float>(v)));
+  const char* unit = home ? "mm" : z.what == "current_offset" ? "A" : z.what == "pressure_zero" ? "Pa" : "";
+  return {{"what", z.what}, {"t_device_s", z.t_device_s}, {"values", values},
+          {"values_unit", unit}, {"committed", z.committed}};
+}
+
+json to_json(const palp::ProgramResult& r) {
+  return {{"program", name_of(r.kind)},
+          {"end", name_of(r.end)},
+          {"t_device_s", r.t_device_s},
+          {"repetitions_done", r.repetitions_done}};
+}
+
+void print_text(const json& j, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it->is_object()) {
+      std::cout << pad << it.key() << ":\n";
+      print_text(*it, indent + 2);
+    } else if (it->is_array() && !it->empty() && it->front().is_object()) {
+      std::cout << pad << it.key() << ":\n";
+      for (const auto& e : *it) std::cout << pad << "  - " << e.dump() << '\n';
+    } else if (it->is_string()) {
+      std::cout << pad << it.key() << ": " << it->get<std::string>() << '\n';
+    } else {
+      std::cout << pad << it.key() << ": " << it->dump() << '\n';
+    }
+  }
+}
+
+Progress::Progress(std::string label, std::uint64_t expected, bool enabled)
+    : label_(std::move(label)), expected_(expected), enabled_(enabled), tty_(::isatty(2) != 0) {}
+
+void Progress::update(std::uint64_t done) {
+  if (!enabled_) return;
+  const double t = now_s();
+  // on a terminal one line rewritten 4 times a second; into a file or pipe a line a second
+  if (last_s_ >= 0 && t - last_s_ < (tty_ ? 0.25 : 1.0)) return;
+  last_s_ = t;
+  shown_ = true;
+  const double pct = expected_ > 0 ? std::min(100.0, 100.0 * static_cast<double>(done) /
+                                                         static_cast<double>(expected_))
+                                   : 0.0;
+  std::fprintf(stderr, "%s%s: %3.0f%% (%llu/%llu samples)%s", tty_ ? "\r" : "", label_.c_str(),
+               pct, static_cast<unsigned long long>(done),
+               static_cast<unsigned long long>(expected_), tty_ ? "" : "\n");
+  std::fflush(stderr);
+}
+
+void Progress::finish(std::uint64_t done) {
+  if (!enabled_) return;
+  last_s_ = -1;
+  update(done);
+  if (shown_ && tty_) std::fputc('\n', stderr);
+}
+
+}  // namespace palpctl

@@ -1,0 +1,118 @@
+// palpctl's shared pieces: the global options, the exit codes, the error-to-exit-code mapping,
+// lab-unit conversions (the SDK is SI; the CLI prints mm, A, s, Hz, Pa, N/mm), output helpers
+// and the Ctrl-C flag.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "palp/probe.hpp"
+
+namespace palpctl {
+
+using nlohmann::json;
+
+/// The documented exit codes (host/cli/README.md).
+enum ExitCode : int {
+  kOk = 0,
+  kRuntime = 1,     ///< the device refused something, a file could not be written, ...
+  kUsage = 2,       ///< bad command line, bad option value, bad URI
+  kConnection = 3,  ///< the device could not be reached or the link was lost
+  kTimeout = 4,     ///< a reply or the program's end did not come in time
+  kVersion = 5,     ///< the handshake said incompatible
+  kFault = 6,       ///< the device's fault latch is set (or tripped during the command)
+  kInterrupted = 130,  ///< Ctrl-C (what was recorded so far is kept)
+};
+
+/// Global options and the chosen command's action.
+struct Context {
+  std::string uri;
+  double timeout_s = 2.0;
+  bool json = false;
+  std::function<int()> action;
+
+  /// Connects and runs the handshake with the global options.
+  palp::Probe connect() const;
+};
+
+// --- command registration (one file per command group) ------------------------------------
+void add_list_command(CLI::App& app, Context& ctx);
+void add_info_command(CLI::App& app, Context& ctx);
+void add_monitor_command(CLI::App& app, Context& ctx);
+void add_stream_command(CLI::App& app, Context& ctx);
+void add_run_command(CLI::App& app, Context& ctx);
+void add_calibrate_command(CLI::App& app, Context& ctx);
+void add_fault_command(CLI::App& app, Context& ctx);
+
+/// Option checks with messages that name the option's value plainly (CLI11's own positive-number
+/// check prints its whole double range for a value that is not a number).
+extern const CLI::Validator kPositive;
+extern const CLI::Validator kNonNegative;
+
+/// Runs a command's action, turning every SDK error into its exit code and a message on stderr
+/// (and, with --json, an {"error": ...} object on stdout).
+int run_guarded(const Context& ctx, const std::function<int()>& action);
+
+/// Prints a JSON document on stdout (one line per document when `compact`).
+void print_json(const json& j, bool compact = false);
+
+// --- Ctrl-C -------------------------------------------------------------------------------
+/// Installs the SIGINT/SIGTERM handler; interrupted() turns true once one arrived.
+void catch_interrupts();
+bool interrupted();
+
+// --- lab units ----------------------------------------------------------------------------
+constexpr double mm_from_m(double m) { return m * 1e3; }
+constexpr double mm_from_counts(std::int64_t c) { return static_cast<double>(c) / 1e3; }
+std::int32_t counts_from_mm(double mm);
+constexpr double s_from_ms(double ms) { return ms / 1e3; }
+constexpr double N_per_mm_from_N_per_m(double k) { return k / 1e3; }
+/// A protocol f32 as the double with the same shortest decimal form (3.2f prints 3.2, not
+/// 3.200000047683716).
+double f32(float v);
+
+/// An enum value's catalogue name ("idle", "travel_limit", ...).
+template <class E>
+std::string name_of(E value) {
+  const char* n = palp::proto::enum_name(value);
+  return n != nullptr ? n : std::to_string(static_cast<unsigned>(value)) + " (unknown)";
+}
+
+// --- the SDK's structs in lab units, as JSON (keys carry their units) ----------------------
+json to_json(const palp::DeviceInfo& d);
+json to_json(const palp::Handshake& h);
+json to_json(const palp::Params& p);
+json to_json(const palp::Calibration& c);
+json to_json(const palp::HealthCounters& h);
+json to_json(const palp::Status& s);
+json to_json(const palp::FaultInfo& f);
+json to_json(const palp::ZeroingRecord& z);
+json to_json(const palp::ProgramResult& r);
+
+/// Prints a JSON object as indented "key: value" lines (the human form of the same data).
+void print_text(const json& j, int indent = 0);
+
+// --- progress on stderr -------------------------------------------------------------------
+/// "\r<label>: 42% (4200/10000 samples)" at most a few times per second; nothing when disabled.
+class Progress {
+ public:
+  Progress(std::string label, std::uint64_t expected, bool enabled);
+  void update(std::uint64_t done);
+  void finish(std::uint64_t done);
+
+ private:
+  std::string label_;
+  std::uint64_t expected_;
+  bool enabled_;
+  bool tty_;
+  double last_s_ = -1;
+  bool shown_ = false;
+};
+
+}  // namespace palpctl
