@@ -131,7 +131,8 @@ std::string canonical_schema_text() {
 
 std::string spec_verdict_example() {
   DeviceInfo d = examples_device_info();
-  d.protocol_minor = static_cast<u8>(kProtocolMinor - 1);
+  d.protocol_major = static_cast<u8>(kProtocolMajor - 1);  // firmware of the previous major
+  d.protocol_minor = 9;
   d.schema_hash = 0x11111111u;
   const ProtocolVersion dv{d.protocol_major, d.protocol_minor, d.schema_hash};
   return "```text\n" +

@@ -241,7 +241,10 @@ int cmd_demo() {
   };
   const Other others[] = {{"an unreleased build of the same version", kProtocolMajor,
                            kProtocolMinor, kSchemaHash ^ 0x5a5a5a5au},
-                          {"older firmware", kProtocolMajor, static_cast<u8>(kProtocolMinor - 1), 0x11111111u},
+                          {"firmware of the previous major version", static_cast<u8>(kProtocolMajor - 1),
+                           9, 0x11111111u},
+                          {"newer firmware of the same major version", kProtocolMajor,
+                           static_cast<u8>(kProtocolMinor + 1), 0x33333333u},
                           {"the next major version", static_cast<u8>(kProtocolMajor + 1), 0, 0x22222222u}};
   for (const Other& o : others) {
     DeviceInfo d = examples_device_info();

@@ -47,7 +47,7 @@ const Ping kPing{0x01020304u, 1'000'000u};
 // Independently computed (Python: zlib.crc32 and a reference COBS encoder).
 TEST(Frame, PingEncodesToTheExactWireBytes) {
   EXPECT_EQ(to_hex(wire(kPing, 7)),
-            "01 03 01 10 02 07 02 0c 08 04 03 02 01 40 42 0f 01 01 01 01 05 fd a3 ad a3 00");
+            "02 01 02 10 02 07 02 0c 08 04 03 02 01 40 42 0f 01 01 01 01 05 e3 18 28 11 00");
 }
 
 TEST(Frame, HeaderFieldsSurviveTheTrip) {
