@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_process.hpp"
+#include "palp/probe.hpp"
 #include "palp/recording.hpp"
 
 namespace palpctl::test {
@@ -161,6 +162,43 @@ TEST_F(PalpctlDevice, FaultClearOnAHealthyDeviceExits0) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["cleared"], true);
   EXPECT_EQ(j["after"]["reason"], "none");
+}
+
+TEST_F(PalpctlDevice, AFaultDuringARunExits6KeepsTheRecordingAndClearsOnceItsCauseIsGone) {
+  {  // a 1 mm travel window about the resting coil (set over the SDK, then the link is closed)
+    palp::Probe probe(sim_.uri());
+    auto p = probe.params();
+    const std::int32_t c = probe.status().encoder_counts;
+    p.travel_min_counts = c - 500;
+    p.travel_max_counts = c + 500;
+    probe.set_params(p);
+  }
+  const auto r = run({"run", "hold", "--current-A", "1", "--seconds", "2", "--out", out("f.csv")});
+  EXPECT_EQ(r.code, 6) << r.err;
+  EXPECT_NE(r.err.find("travel_limit"), std::string::npos) << r.err;
+  const palp::Recording rec = palp::read_recording(out("f.csv"));  // kept, and complete
+  EXPECT_GT(rec.size(), 0u);
+  EXPECT_EQ(rec.sidecar->program["fault"]["reason"], "travel_limit");
+  EXPECT_TRUE(rec.sidecar->program["result"].is_null());
+
+  const auto refused = run({"run", "hold", "--current-A", "0.2", "--seconds", "0.1", "--out",
+                            out("g.csv")});
+  EXPECT_EQ(refused.code, 6) << "the latch refuses programs: " << refused.err;
+  EXPECT_FALSE(fs::exists(out("g.csv")));
+
+  const auto shown = run({"--json", "fault", "show"});
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_EQ(json::parse(shown.out)["fault"]["reason"], "travel_limit");
+
+  // with the current off the springs bring the coil back into the window; until then the
+  // device refuses the clear (exit 6)
+  int code = -1;
+  for (int attempt = 0; attempt < 50 && code != 0; ++attempt) {
+    code = run({"fault", "clear"}).code;
+    EXPECT_TRUE(code == 0 || code == 6) << code;
+    if (code != 0) ::usleep(50000);
+  }
+  EXPECT_EQ(code, 0);
 }
 
 TEST_F(PalpctlDevice, MonitorPrintsLiveValuesUntilSeconds) {
