@@ -135,6 +135,7 @@ int acquire(const Context& ctx, const AcquireOptions& o,
     }
   };
 
+  catch_interrupts();  // from here Ctrl-C stops cleanly and keeps what was recorded
   if (program) program->load(probe);
   probe.start_stream();
   std::future<palp::ProgramResult> done;

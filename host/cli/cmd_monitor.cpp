@@ -52,6 +52,7 @@ Means average(const std::vector<palp::StreamItem>& items) {
 
 int monitor(const Context& ctx, const MonitorOptions& o) {
   auto probe = ctx.connect();
+  catch_interrupts();  // Ctrl-C ends the loop; the stream is stopped on the way out
   probe.configure_stream({.rate_Hz = o.rate_Hz});
   probe.start_stream();
   if (!ctx.json)

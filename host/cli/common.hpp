@@ -63,7 +63,9 @@ int run_guarded(const Context& ctx, const std::function<int()>& action);
 void print_json(const json& j, bool compact = false);
 
 // --- Ctrl-C -------------------------------------------------------------------------------
-/// Installs the SIGINT/SIGTERM handler; interrupted() turns true once one arrived.
+/// Installs the SIGINT/SIGTERM handler; interrupted() turns true once one arrived. Only the
+/// commands with a loop that checks it (monitor, stream, run) install it; elsewhere Ctrl-C ends
+/// palpctl at once (the device's heartbeat watchdog then zeroes any current).
 void catch_interrupts();
 bool interrupted();
 

@@ -59,6 +59,5 @@ int main(int argc, char** argv) {
     return rc == 0 ? palpctl::kOk : palpctl::kUsage;
   }
   if (!ctx.action) return palpctl::kUsage;
-  palpctl::catch_interrupts();
   return palpctl::run_guarded(ctx, ctx.action);
 }
