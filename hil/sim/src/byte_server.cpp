@@ -120,23 +120,8 @@ ByteServer::Events ByteServer::poll(int timeout_ms) {
     if (errno == EINTR) return ev;
     fail("poll");
   }
-  if (fds[0].revents & POLLIN) {
-    const int c = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
-    if (c >= 0) {
-      if (client_ >= 0) {
-        static const char busy[] = "palp-sim: another client is connected; one at a time\n";
-        [[maybe_unused]] const auto w = ::write(c, busy, sizeof busy - 1);
-        ::close(c);
-        ++refused_;
-      } else {
-        client_ = c;
-        const int one = 1;
-        ::setsockopt(c, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // fails harmlessly on Unix
-        rx_.clear();
-        ev.connected = true;
-      }
-    }
-  }
+  // the client's bytes and its hang-up first: a host that closes and reconnects at once must
+  // find the old connection gone, not be refused as a second client
   if (n == 2 && client_ >= 0 && fds[1].revents != 0) {
     if (fds[1].revents & (POLLIN | POLLHUP | POLLERR)) {
       std::uint8_t buf[4096];
@@ -152,6 +137,23 @@ ByteServer::Events ByteServer::poll(int timeout_ms) {
         drop_client();  // 0: orderly close; < 0: reset
         ev.disconnected = true;
         break;
+      }
+    }
+  }
+  if (fds[0].revents & POLLIN) {
+    const int c = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+    if (c >= 0) {
+      if (client_ >= 0) {
+        static const char busy[] = "palp-sim: another client is connected; one at a time\n";
+        [[maybe_unused]] const auto w = ::write(c, busy, sizeof busy - 1);
+        ::close(c);
+        ++refused_;
+      } else {
+        client_ = c;
+        const int one = 1;
+        ::setsockopt(c, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // fails harmlessly on Unix
+        rx_.clear();
+        ev.connected = true;
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <mutex>
 #include <thread>
 
 #include "palp/probe.hpp"
@@ -197,6 +198,52 @@ TEST(ProbeStream, ALinkThatStaysDownFailsEveryCallWithWhyAndForHowLong) {
     EXPECT_THAT(e.what(), HasSubstr("could not be restored within 300 ms"));
     EXPECT_THAT(e.what(), HasSubstr("palp-sim"));
   }
+}
+
+TEST(ProbeStream, ACallbackReceivesTheItemsInOrderInsteadOfTheQueue) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  std::mutex mu;
+  Tally t;
+  probe.on_stream([&](const StreamItem& item) {
+    std::lock_guard lock(mu);
+    t.add(item);
+  });
+  probe.configure_stream({.rate_Hz = 5000.0});
+  probe.start_stream();
+  for (int k = 0; k < 500; ++k) {
+    {
+      std::lock_guard lock(mu);
+      if (t.samples >= 20000) break;
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  probe.stop_stream();
+  std::lock_guard lock(mu);
+  EXPECT_GE(t.samples, 20000u);
+  EXPECT_TRUE(t.in_order);
+  EXPECT_EQ(t.missing, 0u);
+  EXPECT_FALSE(probe.next(10ms).has_value()) << "with a callback nothing goes to the queue";
+}
+
+TEST(ProbeShutdown, ClosingDuringAProgramLeavesTheDeviceWithZeroCurrent) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  {
+    palp::Probe probe(sim.uri());
+    palp::HoldProgram h;
+    h.current_A = 0.4f;
+    h.duration_s = 0.0f;  // until stopped
+    probe.load(h);
+    probe.start();
+    EXPECT_EQ(probe.status().program_state, palp::proto::ProgramState::running);
+  }  // the destructor closes
+  palp::Probe again(sim.uri());
+  const palp::Status st = again.status();
+  EXPECT_NE(st.program_state, palp::proto::ProgramState::running);
+  EXPECT_EQ(st.i_cmd_A, 0.0);
+  EXPECT_FALSE(st.streaming);
 }
 
 }  // namespace
