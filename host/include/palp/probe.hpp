@@ -190,7 +190,10 @@ class Probe {
   std::optional<StreamItem> next(std::chrono::milliseconds timeout);
   /// Moves up to max queued items into out (appended); returns how many. Does not wait.
   std::size_t drain(std::vector<StreamItem>& out, std::size_t max = SIZE_MAX);
-  /// Items go to this callback (on the I/O thread; keep it short) instead of the queue. Pass an
+  /// Items go to this callback instead of the queue, in order, on the I/O thread: keep it short
+  /// and do not call this Probe's methods from it (their replies are read by the same thread).
+  /// It is never called while the SDK holds a lock that next()/drain() take, so it may take the
+  /// application's own locks. Items queued before it was set are handed to it first. Pass an
   /// empty function to go back to the queue.
   void on_stream(std::function<void(const StreamItem&)> callback);
   ClockMapping clock() const;

@@ -5,28 +5,46 @@
 namespace palp::detail {
 
 void StreamQueue::deliver_locked(StreamItem&& item) {
-  if (callback_) {
-    callback_(item);
-    return;
-  }
   items_.push_back(std::move(item));
   max_depth_ = std::max<std::uint64_t>(max_depth_, items_.size());
 }
 
 void StreamQueue::flush_drop_locked() {
   if (!drop_) return;
-  ++gaps_;
-  missing_ += drop_->count;
-  deliver_locked(StreamItem(*drop_));
+  StreamItem gap(*drop_);
+  count_item_locked(gap);
+  deliver_locked(std::move(gap));
   drop_.reset();
 }
 
+void StreamQueue::count_item_locked(const StreamItem& item) {
+  if (std::holds_alternative<Sample>(item)) {
+    ++samples_;
+  } else {
+    ++gaps_;
+    missing_ += std::get<Gap>(item).count;
+  }
+}
+
 void StreamQueue::push(std::vector<StreamItem>& batch) {
+  std::lock_guard cb_lock(cb_mu_);
+  std::function<void(const StreamItem&)> cb;
+  {
+    std::lock_guard lock(mu_);
+    cb = callback_;
+    if (cb)
+      for (const StreamItem& item : batch) count_item_locked(item);
+  }
+  if (cb) {  // on the I/O thread, outside the queue's lock
+    for (const StreamItem& item : batch) cb(item);
+    batch.clear();
+    return;
+  }
   {
     std::lock_guard lock(mu_);
     for (StreamItem& item : batch) {
       if (const Sample* s = std::get_if<Sample>(&item)) {
-        if (!callback_ && items_.size() >= capacity_) {
+        if (items_.size() >= capacity_) {
           if (!drop_) {
             drop_ = Gap{};
             drop_->first_index = s->index;
@@ -37,16 +55,10 @@ void StreamQueue::push(std::vector<StreamItem>& batch) {
           ++dropped_;
           continue;
         }
-        flush_drop_locked();
-        ++samples_;
-        deliver_locked(std::move(item));
-      } else {
-        flush_drop_locked();
-        const Gap& g = std::get<Gap>(item);
-        ++gaps_;
-        missing_ += g.count;
-        deliver_locked(std::move(item));
       }
+      flush_drop_locked();
+      count_item_locked(item);
+      deliver_locked(std::move(item));
     }
   }
   batch.clear();
@@ -79,15 +91,16 @@ std::size_t StreamQueue::drain(std::vector<StreamItem>& out, std::size_t max) {
 }
 
 void StreamQueue::set_callback(std::function<void(const StreamItem&)> cb) {
-  std::lock_guard lock(mu_);
-  callback_ = std::move(cb);
-  if (callback_) {
+  std::lock_guard cb_lock(cb_mu_);  // no push runs meanwhile: order is kept
+  std::deque<StreamItem> queued;
+  {
+    std::lock_guard lock(mu_);
+    callback_ = cb;
+    if (!callback_) return;
     flush_drop_locked();
-    while (!items_.empty()) {  // what was queued goes out first, in order
-      callback_(items_.front());
-      items_.pop_front();
-    }
+    queued.swap(items_);
   }
+  for (const StreamItem& item : queued) cb(item);  // what was queued goes out first, in order
 }
 
 void StreamQueue::clear() {

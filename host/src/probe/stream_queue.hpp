@@ -32,8 +32,12 @@ class StreamQueue {
  private:
   void flush_drop_locked();
   void deliver_locked(StreamItem&& item);
+  void count_item_locked(const StreamItem& item);
 
   std::size_t capacity_;
+  // callback delivery happens under cb_mu_ only, never under mu_: a callback may take its own
+  // locks while another thread waits in pop() (which takes mu_ alone)
+  std::mutex cb_mu_;
   mutable std::mutex mu_;
   std::condition_variable cv_;
   std::deque<StreamItem> items_;

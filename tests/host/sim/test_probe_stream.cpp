@@ -220,11 +220,11 @@ TEST(ProbeStream, ACallbackReceivesTheItemsInOrderInsteadOfTheQueue) {
     std::this_thread::sleep_for(10ms);
   }
   probe.stop_stream();
+  EXPECT_FALSE(probe.next(10ms).has_value()) << "with a callback nothing goes to the queue";
   std::lock_guard lock(mu);
   EXPECT_GE(t.samples, 20000u);
   EXPECT_TRUE(t.in_order);
   EXPECT_EQ(t.missing, 0u);
-  EXPECT_FALSE(probe.next(10ms).has_value()) << "with a callback nothing goes to the queue";
 }
 
 TEST(ProbeShutdown, ClosingDuringAProgramLeavesTheDeviceWithZeroCurrent) {
