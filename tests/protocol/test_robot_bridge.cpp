@@ -51,6 +51,7 @@ StatusBlock example_status() {  // a guarded approach that stopped on the force 
                   bit(StatusBit::host_heartbeat_ok) | bit(StatusBit::latched_pose_valid) |
                   bit(StatusBit::force_valid) | bit(StatusBit::tool_set);
   s.ack_seq = 42;
+  s.ack_result = Result::accepted;
   s.done_seq = 42;
   s.result = Result::guard_fired;
   s.guard_fired = bit(GuardSource::force);
@@ -266,8 +267,8 @@ TEST(RobotBridgeCodec, BadEnumNamesItsRegister) {
   StatusBlock s;
   EXPECT_EQ(decode(std::span<const u16>(r), s), (DecodeResult{DecodeError::bad_enum, 101}));
   r = regs_of(example_status());
-  r[5] = 9;  // result: 9 is not a Result
-  EXPECT_EQ(decode(std::span<const u16>(r), s), (DecodeResult{DecodeError::bad_enum, 105}));
+  r[7] = 10;  // result: 10 is not a Result
+  EXPECT_EQ(decode(std::span<const u16>(r), s), (DecodeResult{DecodeError::bad_enum, 107}));
   r = regs_of(example_approach());
   r[3] = 7;  // axis
   Command c;

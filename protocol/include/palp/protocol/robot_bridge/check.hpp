@@ -18,9 +18,9 @@ inline constexpr u16 kMaxDigitalInput = 16;
 inline constexpr u16 kMaxTool = 15;
 
 struct CommandVerdict {
-  Result result = Result::none;  // none: the parameters are acceptable
-  u16 detail = 0;                // rejected_bad_parameter: the offending register's address
-  constexpr bool accepted() const { return result == Result::none; }
+  Result result = Result::accepted;  // accepted, or the rejection to put in ack_result
+  u16 detail = 0;                    // rejected_bad_parameter: the offending register's address
+  constexpr bool accepted() const { return result == Result::accepted; }
   friend constexpr bool operator==(const CommandVerdict&, const CommandVerdict&) = default;
 };
 

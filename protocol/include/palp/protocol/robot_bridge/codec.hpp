@@ -184,7 +184,7 @@ constexpr bool fits_one_request() {
 }
 static_assert(fits_one_request<Identification>() && fits_one_request<StatusBlock>() &&
               fits_one_request<HostControl>() && fits_one_request<Command>());
-static_assert(Identification::kLength == 10 && StatusBlock::kLength == 52 &&
+static_assert(Identification::kLength == 10 && StatusBlock::kLength == 53 &&
               HostControl::kLength == 3 && Command::kLength == 24);
 static_assert(Identification::kAddress + Identification::kLength <= StatusBlock::kAddress &&
               StatusBlock::kAddress + StatusBlock::kLength <= HostControl::kAddress &&

@@ -69,7 +69,7 @@
   E(force, 2, "The external force along the axis reaching force_threshold_mN.")
 
 #define PALP_RB_ENUM_Result(E)                                                           \
-  E(none, 0, "No command has finished yet.")                                             \
+  E(none, 0, "No command taken or finished yet.")                                           \
   E(done, 1, "Carried out: the target was reached (hold, set_tool, reset_fault: done).") \
   E(guard_fired, 2, "A guarded approach stopped on a guard; guard_fired names it, latched_* hold the pose.") \
   E(max_travel, 3, "A guarded approach travelled max_travel_um without a guard firing.")  \
@@ -78,6 +78,7 @@
   E(robot_fault, 6, "A robot error ended the motion; state is faulted.")                 \
   E(safety_stopped, 7, "The safety controller ended the motion.")                        \
   E(superseded, 8, "A hold command ended the motion.")                                   \
+  E(accepted, 9, "ack_result only: the command was accepted and is carried out.")       \
   E(rejected_unknown_command, 32, "Rejected: code is not a known command.")              \
   E(rejected_bad_parameter, 33, "Rejected: a parameter is out of range or not zero when unused; result_detail is its address.") \
   E(rejected_busy, 34, "Rejected: a motion is in progress (send hold or a stop first).") \
@@ -100,7 +101,7 @@
   F(u16, map_major, "", "Map major version: 1.")                                  \
   F(u16, map_minor, "", "Map minor version: 0.")                                  \
   F(u16, status_address, "", "Address of the status block: 100.")                 \
-  F(u16, status_length, "", "Registers in the status block (52 in 1.0).")         \
+  F(u16, status_length, "", "Registers in the status block (53 in 1.0).")         \
   F(u16, control_address, "", "Address of the host control block: 200.")          \
   F(u16, control_length, "", "Registers in the host control block (3 in 1.0).")   \
   F(u16, command_address, "", "Address of the command block: 300.")               \
@@ -110,10 +111,11 @@
   F(u16, heartbeat, "", "Robot heartbeat: +1 (mod 65536) every bridge cycle.")                 \
   F(RobotState, state, "", "RobotState.")                                                      \
   F(u16, status_bits, "", "StatusBit bits.")                                                  \
-  F(u16, ack_seq, "", "seq of the last command taken (accepted or rejected).")                 \
-  F(u16, done_seq, "", "seq of the last command finished (or rejected); result is its result.") \
-  F(Result, result, "", "Result of the command done_seq names.")                               \
-  F(u16, result_detail, "", "For rejected_bad_parameter: the offending register's address; else 0.") \
+  F(u16, ack_seq, "", "seq of the last command taken, accepted or rejected.")                 \
+  F(Result, ack_result, "", "accepted, or why ack_seq was rejected.")                          \
+  F(u16, reject_detail, "", "ack_result rejected_bad_parameter: the offending register's address; else 0.") \
+  F(u16, done_seq, "", "seq of the last accepted command that finished.")                      \
+  F(Result, result, "", "How done_seq finished.")                                              \
   F(u16, guard_fired, "", "GuardSource bits that ended done_seq's approach; else 0.")          \
   F(u16, stop_seen, "", "The last stop_request value the bridge acted on.")                    \
   F(u16, tool, "", "Active tool id (0: flange).")                                              \
