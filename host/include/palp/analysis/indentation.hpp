@@ -1,0 +1,166 @@
+// Quasi-static indentation analysis (issue 6): plain functions over Eigen data, no I/O, no device.
+//
+// SI everywhere (m, N, N/m, Pa, A); the CLI converts to lab units. Conventions from DESIGN.md:
+// +z points into the specimen, depth delta = z - z_c below the *fitted* contact point z_c.
+//
+//   F   = K_f (i - I_c)                 coil force above the contact threshold current
+//   F_o = F - k_v (z - z_c)             object force (the return springs subtracted)
+//
+// The fits model the measured F as k_v (z - z_c) + M(max(z - z_c, 0)) [+ c], so z_c is a fit
+// parameter of every model (the spring term depends on it too) and the contact point is reported
+// with its standard error. Models M (analysis-notes.md, "Quasi-static curves"):
+//   linear  k delta (no offset: z_c is where it extrapolates to zero force), Hertz sphere,
+//   exact Sneddon sphere, each optionally times the finite-thickness factor; E* and E (nu given).
+// A force offset c is fitted for Hertz/Sneddon only when the recording has a baseline; here a
+// baseline means loading samples below the contact threshold current (i < I_c): the paper's
+// protocol starts its ramp at I_c already in contact, and then z_c and c are not separable.
+// Model choice: lowest AIC = n ln(RSS/n) + 2p. Standard errors: Cov = (J^T J)^-1 RSS/(n - p).
+//
+// Errors: malformed input (size mismatch, NaN/inf, too few points, bad parameters) throws
+// palp::ConfigError with a message that names the problem. A value that cannot be computed from
+// valid input is an absent Value with a reason, never NaN.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "palp/analysis/contact_models.hpp"
+
+namespace palp::analysis {
+
+/// Instrument and analysis settings; defaults are the paper's (§II-A, §IV-A), in SI.
+struct IndentationParams {
+  double force_constant_N_per_A = 2.918;   ///< K_f
+  double contact_current_A = 0.5;          ///< I_c
+  double spring_N_per_m = 43.9;            ///< k_v (0.0439 N/mm)
+  double tip_radius_m = 2.5e-3;            ///< R
+  double poisson = 0.5;                    ///< nu of the specimen
+  double bias_current_A = 1.0;             ///< I_0: operating point F_0 = K_f (I_0 - I_c)
+  std::optional<Thickness> thickness;      ///< finite-thickness correction of Hertz/Sneddon
+  double window_lo_m = 0.25e-3;            ///< window for k_fd and the window slope
+  double window_hi_m = 0.75e-3;
+  double local_half_width_m = 25e-6;       ///< F_o(d): local least squares over d +- this
+  std::vector<double> tangent_depths_m{1e-3, 2e-3, 3e-3, 4e-3};
+  int min_points = 10;                     ///< fewer loading samples in contact: ConfigError
+};
+
+/// A recording: probe position and coil current per sample, optional repetition number
+/// (any integers; samples of one repetition contiguous and in time order). Empty rep = one rep.
+struct Curve {
+  Eigen::VectorXd z_m;
+  Eigen::VectorXd i_A;
+  Eigen::VectorXi rep;
+};
+
+/// A value or the reason it is absent.
+struct Value {
+  std::optional<double> value;
+  std::string reason;  ///< empty when value is present
+  static Value of(double v) { return Value{v, {}}; }
+  static Value absent(std::string why) { return Value{std::nullopt, std::move(why)}; }
+  explicit operator bool() const { return value.has_value(); }
+};
+
+enum class Model { linear, hertz, sneddon };
+const char* model_name(Model m);  ///< "linear", "hertz", "sneddon"
+
+/// One fitted model. params/se are in the order of names:
+///   linear:  k_N_per_m, contact_z_m
+///   hertz / sneddon: Estar_Pa, contact_z_m [, offset_N]
+struct ModelFit {
+  Model model = Model::linear;
+  std::vector<std::string> names;
+  Eigen::VectorXd params;
+  Eigen::VectorXd se;        ///< standard errors from the Jacobian
+  double rss = 0.0;          ///< N^2
+  double r2 = 0.0;           ///< of the measured force F
+  double aic = 0.0;
+  int n = 0;
+  double contact_z_m = 0.0;
+  double contact_z_se_m = 0.0;
+  std::optional<double> k_N_per_m;     ///< linear
+  std::optional<double> Estar_Pa;      ///< hertz / sneddon
+  std::optional<double> E_Pa;          ///< from E* with the params' nu
+  std::optional<double> offset_N;      ///< only with a baseline
+  bool converged = false;
+  int iterations = 0;
+  std::string contact_method;          ///< how z_c was started (then refined by the fit)
+  double radius_m = 2.5e-3;
+  std::optional<Thickness> thickness;
+
+  /// Object force of the model at a depth below z_c (no offset), and its analytic derivative.
+  double force_N(double depth_m) const;
+  double stiffness_N_per_m(double depth_m) const;
+};
+
+/// Loading samples (first sample of each repetition up to its peak current) and the rest.
+struct Branches {
+  std::vector<int> loading;    ///< sample indices
+  std::vector<int> unloading;
+};
+
+/// F = K_f (i - I_c) for every sample.
+Eigen::VectorXd coil_force_N(const Curve& c, const IndentationParams& p);
+/// F_o = K_f (i - I_c) - k_v (z - z_c).
+Eigen::VectorXd object_force_N(const Curve& c, const IndentationParams& p, double contact_z_m);
+Branches loading_branch(const Curve& c);
+/// Throws ConfigError on size mismatch, non-finite values or bad params.
+void validate(const Curve& c, const IndentationParams& p);
+
+/// Fit on the loading branch (pooled over repetitions). Throws ConfigError when fewer than
+/// p.min_points loading samples reach I_c or the input is malformed.
+ModelFit fit_linear(const Curve& c, const IndentationParams& p);
+ModelFit fit_hertz(const Curve& c, const IndentationParams& p);
+ModelFit fit_sneddon(const Curve& c, const IndentationParams& p);
+
+struct IndentationResult {
+  std::optional<ModelFit> linear, hertz, sneddon;
+  std::optional<Model> chosen;           ///< lowest AIC
+  std::string fit_reason;                ///< why no fit, when none
+  bool has_baseline = false;
+  int n_loading = 0, n_unloading = 0;
+  double F0_N = 0.0;                     ///< K_f (I_0 - I_c)
+  Value contact_z_m;                     ///< of the chosen model
+  Value delta0_m;                        ///< depth where the chosen model's F_o = F_0
+  Value k_tangent_at_delta0_N_per_m;     ///< analytic dF_o/ddelta at delta0
+  Value k_fd_N_per_m;                    ///< (F_o(hi) - F_o(lo)) / (hi - lo), local LSQ values
+  Value k_window_N_per_m;                ///< LSQ slope of F_o over [lo, hi]
+  Value k_fd_paper_N_per_m;              ///< k_fd with depths from the first sample at i >= I_c
+  Value k_window_paper_N_per_m;          ///< window slope, same depth origin
+  std::vector<double> tangent_depths_m;
+  std::vector<Value> k_tangent_N_per_m;  ///< chosen model's dF_o/ddelta at tangent_depths_m
+};
+
+/// The whole analysis. Throws ConfigError on malformed input; no contact (no sample with
+/// i >= I_c) gives a result whose values are absent with that reason.
+IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p = {});
+
+/// Model-free descriptors, exposed for tests and tools. depth = z - origin_z per sample
+/// (origin_z per repetition when `origin_per_rep` is given, indexed like the loading order).
+Value local_force_N(const Eigen::VectorXd& depth_m, const Eigen::VectorXd& Fo_N, double at_m,
+                    double half_width_m);
+Value finite_difference_stiffness(const Eigen::VectorXd& depth_m, const Eigen::VectorXd& Fo_N,
+                                  const IndentationParams& p);
+Value window_slope(const Eigen::VectorXd& depth_m, const Eigen::VectorXd& Fo_N,
+                   const IndentationParams& p);
+
+/// Mean and sample s.d. of F_o over repetitions on a common depth grid (loading branches,
+/// linear interpolation within each repetition's depth range; count = reps that cover the depth;
+/// sd_N is 0 where count < 2 and mean_N is 0 where count = 0: read count first).
+struct RepetitionStats {
+  Eigen::VectorXd depth_m, mean_N, sd_N;
+  Eigen::VectorXi count;
+};
+RepetitionStats repetition_mean_sd(const Curve& c, const IndentationParams& p, double contact_z_m,
+                                   const Eigen::VectorXd& depth_grid_m);
+
+/// Mean and sample s.d. of a per-repetition scalar (absent values skipped; sd absent below 2).
+struct MeanSd {
+  Value mean, sd;
+  int n = 0;
+};
+MeanSd mean_sd(const std::vector<Value>& per_rep);
+
+}  // namespace palp::analysis

@@ -1,0 +1,298 @@
+// Branches, descriptors and the whole quasi-static analysis: see palp/analysis/indentation.hpp.
+#include "palp/analysis/indentation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "analysis/indentation_internal.hpp"
+#include "palp/error.hpp"
+
+namespace palp::analysis {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+// Contiguous runs of equal rep values: [begin, end) per repetition.
+std::vector<std::pair<int, int>> repetitions(const Curve& c) {
+  std::vector<std::pair<int, int>> runs;
+  const int n = static_cast<int>(c.z_m.size());
+  if (n == 0) return runs;
+  if (c.rep.size() == 0) return {{0, n}};
+  int b = 0;
+  for (int k = 1; k <= n; ++k) {
+    if (k == n || c.rep[k] != c.rep[b]) { runs.emplace_back(b, k); b = k; }
+  }
+  return runs;
+}
+
+bool finite_params(const IndentationParams& p) {
+  for (double v : {p.force_constant_N_per_A, p.contact_current_A, p.spring_N_per_m, p.tip_radius_m,
+                   p.poisson, p.bias_current_A, p.window_lo_m, p.window_hi_m, p.local_half_width_m})
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+}  // namespace
+
+void validate(const Curve& c, const IndentationParams& p) {
+  if (c.z_m.size() != c.i_A.size())
+    throw ConfigError("indentation curve: z_m has " + std::to_string(c.z_m.size()) +
+                      " samples but i_A has " + std::to_string(c.i_A.size()));
+  if (c.rep.size() != 0 && c.rep.size() != c.z_m.size())
+    throw ConfigError("indentation curve: rep has " + std::to_string(c.rep.size()) +
+                      " entries for " + std::to_string(c.z_m.size()) + " samples");
+  for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
+    if (!std::isfinite(c.z_m[k]) || !std::isfinite(c.i_A[k]))
+      throw ConfigError("indentation curve: sample " + std::to_string(k) +
+                        " is not finite (z_m = " + fmt(c.z_m[k]) + ", i_A = " + fmt(c.i_A[k]) +
+                        "); remove or repair it before the analysis");
+  }
+  if (!finite_params(p) || !(p.force_constant_N_per_A > 0.0) || !(p.tip_radius_m > 0.0) ||
+      !(p.spring_N_per_m >= 0.0) || !(p.poisson >= 0.0 && p.poisson < 1.0) ||
+      !(p.window_hi_m > p.window_lo_m) || !(p.local_half_width_m > 0.0) || p.min_points < 3 ||
+      (p.thickness && !(p.thickness->thickness_m > 0.0)))
+    throw ConfigError("indentation parameters: need finite K_f > 0, R > 0, k_v >= 0, 0 <= nu < 1, "
+                      "window_hi_m > window_lo_m, local_half_width_m > 0, min_points >= 3 and a "
+                      "positive thickness when one is given");
+}
+
+Eigen::VectorXd coil_force_N(const Curve& c, const IndentationParams& p) {
+  return p.force_constant_N_per_A * (c.i_A.array() - p.contact_current_A).matrix();
+}
+
+Eigen::VectorXd object_force_N(const Curve& c, const IndentationParams& p, double contact_z_m) {
+  return coil_force_N(c, p) - p.spring_N_per_m * (c.z_m.array() - contact_z_m).matrix();
+}
+
+Branches loading_branch(const Curve& c) {
+  Branches b;
+  for (auto [begin, end] : repetitions(c)) {
+    int peak = begin;
+    for (int k = begin; k < end; ++k) if (c.i_A[k] > c.i_A[peak]) peak = k;
+    for (int k = begin; k <= peak; ++k) b.loading.push_back(k);
+    for (int k = peak + 1; k < end; ++k) b.unloading.push_back(k);
+  }
+  return b;
+}
+
+detail::FitData detail::collect_loading(const Curve& c, const IndentationParams& p) {
+  validate(c, p);
+  FitData d;
+  std::vector<int> idx;
+  int rep_ord = 0, below = 0;
+  d.max_i_A = c.i_A.size() ? c.i_A.maxCoeff() : 0.0;
+  for (auto [begin, end] : repetitions(c)) {
+    Curve one;
+    one.z_m = c.z_m.segment(begin, end - begin);
+    one.i_A = c.i_A.segment(begin, end - begin);
+    bool first = true;
+    for (int k : loading_branch(one).loading) {
+      const int g = begin + k;
+      idx.push_back(g);
+      d.rep_of.push_back(rep_ord);
+      if (c.i_A[g] >= p.contact_current_A) {
+        ++d.n_contact;
+        if (first) { d.first_contact_z_m.push_back(c.z_m[g]); d.first_contact_rep.push_back(rep_ord); first = false; }
+      }
+      if (c.i_A[g] < p.contact_current_A - kBaselineMarginA) ++below;
+    }
+    ++rep_ord;
+  }
+  d.has_baseline = below >= kBaselineMinSamples;
+  d.z_m.resize(static_cast<Eigen::Index>(idx.size()));
+  d.F_N.resize(d.z_m.size());
+  for (size_t k = 0; k < idx.size(); ++k) {
+    d.z_m[static_cast<Eigen::Index>(k)] = c.z_m[idx[k]];
+    d.F_N[static_cast<Eigen::Index>(k)] = p.force_constant_N_per_A * (c.i_A[idx[k]] - p.contact_current_A);
+  }
+  return d;
+}
+
+void detail::require_contact(const FitData& d, const IndentationParams& p) {
+  if (d.n_contact == 0)
+    throw ConfigError("no contact: no loading sample reaches the contact current I_c = " +
+                      fmt(p.contact_current_A) + " A (highest current " + fmt(d.max_i_A) + " A)");
+  if (d.n_contact < p.min_points)
+    throw ConfigError("too few points: " + std::to_string(d.n_contact) +
+                      " loading samples at or above I_c = " + fmt(p.contact_current_A) +
+                      " A, the fits need at least " + std::to_string(p.min_points));
+}
+
+Value local_force_N(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo, double at,
+                    double hw) {
+  double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (Eigen::Index k = 0; k < depth.size(); ++k) {
+    if (std::abs(depth[k] - at) > hw) continue;
+    const double x = depth[k] - at;
+    s0 += 1; sx += x; sy += Fo[k]; sxx += x * x; sxy += x * Fo[k];
+  }
+  const double det = s0 * sxx - sx * sx;
+  if (s0 < 2 || !(det > 1e-12 * s0 * s0 * hw * hw))
+    return Value::absent("fewer than 2 distinct depths within +-" + fmt(hw * 1e3) + " mm of " +
+                         fmt(at * 1e3) + " mm depth");
+  return Value::of((sxx * sy - sx * sxy) / det);  // the local line's value at `at`
+}
+
+Value finite_difference_stiffness(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo,
+                                  const IndentationParams& p) {
+  const Value lo = local_force_N(depth, Fo, p.window_lo_m, p.local_half_width_m);
+  const Value hi = local_force_N(depth, Fo, p.window_hi_m, p.local_half_width_m);
+  if (!lo) return lo;
+  if (!hi) return hi;
+  return Value::of((*hi.value - *lo.value) / (p.window_hi_m - p.window_lo_m));
+}
+
+Value window_slope(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo,
+                   const IndentationParams& p) {
+  double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, dmin = INFINITY, dmax = -INFINITY;
+  for (Eigen::Index k = 0; k < depth.size(); ++k) {
+    if (depth[k] < p.window_lo_m || depth[k] > p.window_hi_m) continue;
+    s0 += 1; sx += depth[k]; sy += Fo[k]; sxx += depth[k] * depth[k]; sxy += depth[k] * Fo[k];
+    dmin = std::min(dmin, depth[k]); dmax = std::max(dmax, depth[k]);
+  }
+  if (s0 < 3 || !(dmax - dmin > 0.5 * (p.window_hi_m - p.window_lo_m)))
+    return Value::absent("the loading samples do not cover half of the " + fmt(p.window_lo_m * 1e3) +
+                         "-" + fmt(p.window_hi_m * 1e3) + " mm depth window");
+  return Value::of((s0 * sxy - sx * sy) / (s0 * sxx - sx * sx));
+}
+
+IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p) {
+  IndentationResult res;
+  res.F0_N = p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A);
+  res.tangent_depths_m = p.tangent_depths_m;
+  const detail::FitData d = detail::collect_loading(c, p);  // throws on malformed input
+  const Branches br = loading_branch(c);
+  res.n_loading = static_cast<int>(br.loading.size());
+  res.n_unloading = static_cast<int>(br.unloading.size());
+  res.has_baseline = d.has_baseline;
+  auto all_absent = [&](const std::string& why) {
+    res.fit_reason = why;
+    for (Value* v : {&res.contact_z_m, &res.delta0_m, &res.k_tangent_at_delta0_N_per_m,
+                     &res.k_fd_N_per_m, &res.k_window_N_per_m, &res.k_fd_paper_N_per_m,
+                     &res.k_window_paper_N_per_m})
+      *v = Value::absent(why);
+    res.k_tangent_N_per_m.assign(p.tangent_depths_m.size(), Value::absent(why));
+    return res;
+  };
+  try {
+    detail::require_contact(d, p);
+    res.linear = fit_linear(c, p);
+    res.hertz = fit_hertz(c, p);
+    res.sneddon = detail::fit_sneddon_from(c, p, *res.hertz);
+  } catch (const ConfigError& e) {
+    if (d.n_contact == 0) return all_absent(e.what());
+    throw;
+  }
+  const ModelFit* best = &*res.linear;
+  for (const ModelFit* m : {&*res.hertz, &*res.sneddon}) if (m->aic < best->aic) best = m;
+  res.chosen = best->model;
+  res.contact_z_m = Value::of(best->contact_z_m);
+
+  // Model-free descriptors from the fitted contact point.
+  const Eigen::VectorXd depth = (d.z_m.array() - best->contact_z_m).matrix();
+  const Eigen::VectorXd Fo = d.F_N - p.spring_N_per_m * depth;
+  const double max_depth = depth.maxCoeff();
+  res.k_fd_N_per_m = finite_difference_stiffness(depth, Fo, p);
+  res.k_window_N_per_m = window_slope(depth, Fo, p);
+
+  // The paper's variant: depths from each repetition's first sample at i >= I_c.
+  Eigen::VectorXd depth_p(d.z_m.size()), Fo_p(d.z_m.size());
+  Eigen::Index np = 0;
+  for (Eigen::Index k = 0; k < d.z_m.size(); ++k) {
+    const auto it = std::find(d.first_contact_rep.begin(), d.first_contact_rep.end(), d.rep_of[static_cast<size_t>(k)]);
+    if (it == d.first_contact_rep.end()) continue;
+    const double origin = d.first_contact_z_m[static_cast<size_t>(it - d.first_contact_rep.begin())];
+    depth_p[np] = d.z_m[k] - origin;
+    Fo_p[np] = d.F_N[k] - p.spring_N_per_m * depth_p[np];
+    ++np;
+  }
+  res.k_fd_paper_N_per_m = finite_difference_stiffness(depth_p.head(np), Fo_p.head(np), p);
+  res.k_window_paper_N_per_m = window_slope(depth_p.head(np), Fo_p.head(np), p);
+
+  // Operating point: F_o(delta0) = F_0 on the chosen model (monotone: bisection).
+  const std::string beyond = " mm, beyond the deepest loading sample (" + fmt(max_depth * 1e3) + " mm)";
+  if (!(res.F0_N > 0.0)) {
+    res.delta0_m = Value::absent("bias current I_0 = " + fmt(p.bias_current_A) +
+                                 " A gives no positive object force above I_c");
+  } else {
+    double lo = 0.0, hi = std::max(max_depth, 1e-6);
+    while (best->force_N(hi) < res.F0_N && hi < 10.0) hi *= 2.0;
+    if (best->force_N(hi) < res.F0_N) {
+      res.delta0_m = Value::absent("the fitted model does not reach F_0 = " + fmt(res.F0_N) + " N");
+    } else {
+      for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (best->force_N(mid) < res.F0_N ? lo : hi) = mid;
+      }
+      const double d0 = 0.5 * (lo + hi);
+      if (d0 > max_depth) res.delta0_m = Value::absent("delta0 = " + fmt(d0 * 1e3) + beyond);
+      else res.delta0_m = Value::of(d0);
+    }
+  }
+  res.k_tangent_at_delta0_N_per_m = res.delta0_m
+      ? Value::of(best->stiffness_N_per_m(*res.delta0_m.value)) : Value::absent(res.delta0_m.reason);
+  for (double dd : p.tangent_depths_m) {
+    if (dd > max_depth) res.k_tangent_N_per_m.push_back(Value::absent("depth " + fmt(dd * 1e3) + beyond));
+    else res.k_tangent_N_per_m.push_back(Value::of(best->stiffness_N_per_m(dd)));
+  }
+  return res;
+}
+
+RepetitionStats repetition_mean_sd(const Curve& c, const IndentationParams& p, double contact_z_m,
+                                   const Eigen::VectorXd& grid) {
+  validate(c, p);
+  const Eigen::Index G = grid.size();
+  RepetitionStats s{grid, Eigen::VectorXd::Zero(G), Eigen::VectorXd::Zero(G), Eigen::VectorXi::Zero(G)};
+  Eigen::VectorXd sum2 = Eigen::VectorXd::Zero(G);
+  for (auto [begin, end] : repetitions(c)) {
+    Curve one{c.z_m.segment(begin, end - begin), c.i_A.segment(begin, end - begin), {}};
+    std::vector<std::pair<double, double>> pts;  // (depth, F_o), sorted by depth
+    const Eigen::VectorXd Fo = object_force_N(one, p, contact_z_m);
+    for (int k : loading_branch(one).loading) pts.emplace_back(one.z_m[k] - contact_z_m, Fo[k]);
+    std::sort(pts.begin(), pts.end());
+    if (pts.size() < 2) continue;
+    for (Eigen::Index g = 0; g < G; ++g) {
+      const double x = grid[g];
+      if (x < pts.front().first || x > pts.back().first) continue;
+      auto it = std::lower_bound(pts.begin(), pts.end(), std::make_pair(x, -HUGE_VAL));
+      if (it == pts.begin()) ++it;
+      const auto& a = *(it - 1);
+      const auto& b = *it;
+      const double f = b.first > a.first ? a.second + (b.second - a.second) * (x - a.first) / (b.first - a.first)
+                                         : 0.5 * (a.second + b.second);
+      s.mean_N[g] += f;
+      sum2[g] += f * f;
+      ++s.count[g];
+    }
+  }
+  for (Eigen::Index g = 0; g < G; ++g) {
+    const int n = s.count[g];
+    if (n == 0) continue;
+    const double m = s.mean_N[g] / n;
+    s.mean_N[g] = m;
+    s.sd_N[g] = n > 1 ? std::sqrt(std::max(0.0, (sum2[g] - n * m * m) / (n - 1))) : 0.0;
+  }
+  return s;
+}
+
+MeanSd mean_sd(const std::vector<Value>& per_rep) {
+  MeanSd out;
+  double s = 0, s2 = 0;
+  for (const Value& v : per_rep) if (v) { s += *v.value; s2 += *v.value * *v.value; ++out.n; }
+  if (out.n == 0) { out.mean = out.sd = Value::absent("no repetition has a value"); return out; }
+  const double m = s / out.n;
+  out.mean = Value::of(m);
+  out.sd = out.n > 1 ? Value::of(std::sqrt(std::max(0.0, (s2 - out.n * m * m) / (out.n - 1))))
+                     : Value::absent("s.d. needs at least 2 repetitions with a value");
+  return out;
+}
+
+}  // namespace palp::analysis

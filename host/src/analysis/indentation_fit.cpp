@@ -1,0 +1,251 @@
+// Model fits with the contact point as a parameter: see palp/analysis/indentation.hpp.
+//
+// Start: a profile over z_c on a grid (for each candidate z_c the model is linear in its
+// stiffness parameter and offset, solved in closed form); then Levenberg-Marquardt on all
+// parameters. The Sneddon fit starts from the Hertz solution. Deterministic, no state.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "analysis/indentation_internal.hpp"
+#include "analysis/least_squares.hpp"
+#include "palp/error.hpp"
+
+namespace palp::analysis {
+
+namespace {
+
+using detail::FitData;
+
+// The model's object force per unit stiffness parameter (k or E*), thickness included.
+double unit_force(Model m, double depth, double R, const std::optional<Thickness>& t) {
+  if (!(depth > 0.0)) return 0.0;
+  double f = 0.0;
+  switch (m) {
+    case Model::linear: return depth;
+    case Model::hertz: f = hertz_force_N(depth, 1.0, R); break;
+    case Model::sneddon: f = sneddon_force_N(depth, 1.0, R); break;
+  }
+  return t ? f * thickness_factor(depth, R, *t) : f;
+}
+
+// Its derivative with respect to depth (for the analytic Jacobian).
+double unit_stiffness(Model m, double depth, double R, const std::optional<Thickness>& t) {
+  if (!(depth > 0.0)) return 0.0;
+  double f = 0.0, df = 0.0;
+  switch (m) {
+    case Model::linear: return 1.0;
+    case Model::hertz: f = hertz_force_N(depth, 1.0, R); df = hertz_stiffness_N_per_m(depth, 1.0, R); break;
+    case Model::sneddon: f = sneddon_force_N(depth, 1.0, R); df = sneddon_stiffness_N_per_m(depth, 1.0, R); break;
+  }
+  return t ? df * thickness_factor(depth, R, *t) + f * thickness_factor_derivative_per_m(depth, R, *t) : df;
+}
+
+struct Setup {
+  Model model;
+  bool offset;
+  double kv, R;
+  std::optional<Thickness> thickness;
+  const FitData* d;
+};
+
+void residuals(const Setup& s, const Eigen::VectorXd& q, Eigen::VectorXd& r) {
+  const double theta = q[0], zc = q[1], c = s.offset ? q[2] : 0.0;
+  const auto& z = s.d->z_m;
+  const auto& F = s.d->F_N;
+  r.resize(z.size());
+  for (Eigen::Index k = 0; k < z.size(); ++k) {
+    const double delta = z[k] - zc;
+    r[k] = F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c);
+  }
+}
+
+// dr/dtheta = -g(delta), dr/dz_c = k_v + theta g'(delta), dr/dc = -1.
+void jacobian(const Setup& s, const Eigen::VectorXd& q, Eigen::MatrixXd& J) {
+  const auto& z = s.d->z_m;
+  for (Eigen::Index k = 0; k < z.size(); ++k) {
+    const double delta = z[k] - q[1];
+    J(k, 0) = -unit_force(s.model, delta, s.R, s.thickness);
+    J(k, 1) = s.kv + q[0] * unit_stiffness(s.model, delta, s.R, s.thickness);
+    if (s.offset) J(k, 2) = -1.0;
+  }
+}
+
+// Closed-form (theta, c) for a fixed z_c; returns rss.
+double profile(const Setup& s, double zc, double& theta, double& c) {
+  const auto& z = s.d->z_m;
+  const auto& F = s.d->F_N;
+  const Eigen::Index n = z.size();
+  double sg = 0, sy = 0, sgg = 0, sgy = 0, syy = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double delta = z[k] - zc;
+    const double g = unit_force(s.model, delta, s.R, s.thickness);
+    const double y = F[k] - s.kv * delta;
+    sg += g; sy += y; sgg += g * g; sgy += g * y; syy += y * y;
+  }
+  if (s.offset) {
+    const double det = n * sgg - sg * sg;
+    if (!(det > 0.0)) { theta = 0; c = sy / n; return syy - sy * sy / n; }
+    theta = (n * sgy - sg * sy) / det;
+    c = (sy - theta * sg) / n;
+  } else {
+    c = 0.0;
+    theta = sgg > 0.0 ? sgy / sgg : 0.0;
+  }
+  double rss = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double delta = z[k] - zc;
+    const double e = F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c);
+    rss += e * e;
+  }
+  return rss;
+}
+
+struct Range { double lo, hi; std::string method; };
+
+Range contact_range(const FitData& d) {
+  const double zmin = d.z_m.minCoeff(), zmax = d.z_m.maxCoeff();
+  const double span = std::max(zmax - zmin, 1e-9);
+  if (d.has_baseline) {
+    return {zmin, zmax - 0.1 * span,
+            "baseline present: profile over the data range, then refined by the fit"};
+  }
+  const double first = *std::min_element(d.first_contact_z_m.begin(), d.first_contact_z_m.end());
+  return {zmin - 0.1 * span, std::min(first + 0.1 * span, zmax - 0.1 * span),
+          "no baseline: profile around the first sample at i >= I_c, then refined by the fit"};
+}
+
+ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationParams& p,
+                const std::string& method) {
+  ModelFit m;
+  m.model = s.model;
+  m.names = {s.model == Model::linear ? "k_N_per_m" : "Estar_Pa", "contact_z_m"};
+  if (s.offset) m.names.push_back("offset_N");
+  m.params = lm.p;
+  m.se = detail::standard_errors(lm.J, lm.rss);
+  m.rss = lm.rss;
+  m.n = static_cast<int>(lm.r.size());
+  const int np = static_cast<int>(lm.p.size());
+  m.aic = m.n * std::log(std::max(lm.rss, 1e-300) / m.n) + 2.0 * np;
+  // R^2 of the object force F_o = F - k_v (z - z_c) (residuals are the same as for F).
+  const Eigen::VectorXd Fo = s.d->F_N - s.kv * (s.d->z_m.array() - lm.p[1]).matrix();
+  const double tss = (Fo.array() - Fo.mean()).square().sum();
+  m.r2 = tss > 0.0 ? 1.0 - lm.rss / tss : 0.0;
+  m.contact_z_m = lm.p[1];
+  m.contact_z_se_m = m.se[1];
+  if (s.model == Model::linear) {
+    m.k_N_per_m = lm.p[0];
+  } else {
+    m.Estar_Pa = lm.p[0];
+    m.E_Pa = youngs_modulus_Pa(lm.p[0], p.poisson);
+  }
+  if (s.offset) m.offset_N = lm.p[2];
+  m.converged = lm.converged;
+  m.iterations = lm.iterations;
+  m.contact_method = method;
+  m.radius_m = s.R;
+  m.thickness = s.model == Model::linear ? std::nullopt : s.thickness;
+  return m;
+}
+
+ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
+                   const ModelFit* start) {
+  const FitData d = detail::collect_loading(c, p);
+  detail::require_contact(d, p);
+  Setup s{model, d.has_baseline && model != Model::linear, p.spring_N_per_m, p.tip_radius_m,
+          model == Model::linear ? std::nullopt : p.thickness, &d};
+  const Range range = contact_range(d);
+  double theta = 0.0, off = 0.0, zc = 0.0;
+  if (start) {
+    theta = start->params[0];
+    zc = start->contact_z_m;
+    off = start->offset_N.value_or(0.0);
+  } else {
+    // Coarse grid, then a fine grid around the best cell.
+    double best = INFINITY, lo = range.lo, hi = range.hi;
+    for (int pass = 0; pass < 2; ++pass) {
+      const int N = pass == 0 ? 120 : 40;
+      const double step = (hi - lo) / N;
+      double best_z = zc;
+      for (int k = 0; k <= N; ++k) {
+        double th, cc;
+        const double zk = lo + k * step;
+        const double rss = profile(s, zk, th, cc);
+        if (rss < best && th > 0.0) { best = rss; best_z = zk; theta = th; off = cc; }
+      }
+      zc = best_z;
+      lo = std::max(range.lo, zc - step);
+      hi = std::min(range.hi, zc + step);
+    }
+    if (!(theta > 0.0)) {
+      throw ConfigError(std::string("cannot start the ") + model_name(model) +
+                        " fit: no contact point in the data range gives a positive stiffness");
+    }
+  }
+  const int np = s.offset ? 3 : 2;
+  Eigen::VectorXd p0(np), lo(np), hi(np), typ(np);
+  p0 << theta, zc;
+  lo << 0.0, range.lo;
+  hi << INFINITY, range.hi;
+  const double span = std::max(d.z_m.maxCoeff() - d.z_m.minCoeff(), 1e-6);
+  typ << std::abs(theta) + 1e-12, span;
+  if (s.offset) {
+    p0[2] = off; lo[2] = -INFINITY; hi[2] = INFINITY;
+    typ[2] = std::max(d.F_N.cwiseAbs().maxCoeff(), 1e-6);
+  }
+  const auto lm = detail::levenberg_marquardt(
+      [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, d.z_m.size(), p0,
+      lo, hi, typ, [&](const Eigen::VectorXd& q, Eigen::MatrixXd& J) { jacobian(s, q, J); });
+  return finish(s, lm, p, start ? start->contact_method : range.method);
+}
+
+}  // namespace
+
+const char* model_name(Model m) {
+  switch (m) {
+    case Model::linear: return "linear";
+    case Model::hertz: return "hertz";
+    case Model::sneddon: return "sneddon";
+  }
+  return "?";
+}
+
+double ModelFit::force_N(double depth_m) const {
+  return params[0] * unit_force(model, depth_m, radius_m, thickness);
+}
+
+double ModelFit::stiffness_N_per_m(double depth_m) const {
+  if (!(depth_m > 0.0)) return model == Model::linear ? params[0] : 0.0;
+  double f = 0.0, df = 0.0;
+  switch (model) {
+    case Model::linear: return params[0];
+    case Model::hertz:
+      f = hertz_force_N(depth_m, params[0], radius_m);
+      df = hertz_stiffness_N_per_m(depth_m, params[0], radius_m);
+      break;
+    case Model::sneddon:
+      f = sneddon_force_N(depth_m, params[0], radius_m);
+      df = sneddon_stiffness_N_per_m(depth_m, params[0], radius_m);
+      break;
+  }
+  if (!thickness) return df;
+  return df * thickness_factor(depth_m, radius_m, *thickness) +
+         f * thickness_factor_derivative_per_m(depth_m, radius_m, *thickness);
+}
+
+ModelFit fit_linear(const Curve& c, const IndentationParams& p) {
+  return fit_model(Model::linear, c, p, nullptr);
+}
+ModelFit fit_hertz(const Curve& c, const IndentationParams& p) {
+  return fit_model(Model::hertz, c, p, nullptr);
+}
+ModelFit fit_sneddon(const Curve& c, const IndentationParams& p) {
+  const ModelFit h = fit_hertz(c, p);
+  return fit_model(Model::sneddon, c, p, &h);
+}
+
+ModelFit detail::fit_sneddon_from(const Curve& c, const IndentationParams& p, const ModelFit& hertz) {
+  return fit_model(Model::sneddon, c, p, &hertz);
+}
+
+}  // namespace palp::analysis
