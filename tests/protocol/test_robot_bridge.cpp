@@ -60,7 +60,7 @@ StatusBlock example_status() {  // a guarded approach that stopped on the force 
   s.robot_time_ms = 123456789;
   s.x_um = 500000, s.y_um = -123456, s.z_um = 212345;
   s.a_mdeg = 180000, s.b_mdeg = 0, s.c_mdeg = -179999;
-  s.latched_x_um = 500000, s.latched_y_um = -123456, s.latched_z_um = 212340;
+  s.latched_x_um = 500000, s.latched_y_um = -123456, s.latched_z_um = 212350;
   s.latched_a_mdeg = 180000, s.latched_b_mdeg = 0, s.latched_c_mdeg = -179999;
   s.force_mN = 2500;
   s.a1_mdeg = 0, s.a2_mdeg = 30000, s.a3_mdeg = 0, s.a4_mdeg = -90000;
