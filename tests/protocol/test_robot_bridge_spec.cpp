@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "palp/protocol/robot_bridge/check.hpp"
 #include "palp/protocol/robot_bridge/codec.hpp"
 
 namespace palp::proto::rb {
@@ -148,6 +149,26 @@ TEST(RobotBridgeSpec, EveryHexRegisterExampleIsAGoldenVector) {
   }
   EXPECT_FALSE(open) << "unbalanced ``` fences in robot-bridge.md";
   EXPECT_GE(examples, 3);
+}
+
+// §6's table states check.hpp's limits.
+TEST(RobotBridgeSpec, CommandTableStatesTheCheckedLimits) {
+  const std::string cells[] = {
+      "| 1.." + std::to_string(kMaxLinSpeedUmPerS) + " µm/s |",
+      "| 1.." + std::to_string(kMaxPtpSpeedPermille) + " ‰ of",
+      "| 1.." + std::to_string(kMaxApproachSpeedUmPerS) + " µm/s |",
+      "| 1.." + std::to_string(kMaxDigitalInput) + " if the `digital_input` bit is set |",
+      "| 1.." + std::to_string(kMaxForceThresholdMN) + " mN if the `force` bit is set |",
+      "| −" + std::to_string(kMaxApproachTravelUm) + ".." + std::to_string(kMaxApproachTravelUm) + " µm, ≠ 0 |",
+      "| 1.." + std::to_string(kMaxTool) + " |",
+      "−" + std::to_string(kMaxAngleMdeg) + ".." + std::to_string(kMaxAngleMdeg) + " mdeg",
+  };
+  for (const std::string& cell : cells) EXPECT_NE(spec().find(cell), std::string::npos) << cell;
+}
+
+TEST(RobotBridgeSpec, RejectionsAreTheResultsFrom32On) {
+  for (const EnumValueInfo& v : EnumInfo<Result>::values)
+    EXPECT_EQ(v.value >= 32, std::string(v.name).rfind("rejected_", 0) == 0) << v.name;
 }
 
 }  // namespace
