@@ -184,15 +184,32 @@ IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p
   };
   try {
     detail::require_contact(d, p);
-    res.linear = fit_linear(c, p);
-    res.hertz = fit_hertz(c, p);
-    res.sneddon = detail::fit_sneddon_from(c, p, *res.hertz);
   } catch (const ConfigError& e) {
     if (d.n_contact == 0) return all_absent(e.what());
-    throw;
+    throw;  // too few points: the recording is unusable, say so
   }
-  const ModelFit* best = &*res.linear;
-  for (const ModelFit* m : {&*res.hertz, &*res.sneddon}) if (m->aic < best->aic) best = m;
+  // Each model on its own: one that cannot be fitted is absent with its reason.
+  auto attempt = [](std::optional<ModelFit>& out, std::string& why, auto&& fit) {
+    try {
+      out = fit();
+    } catch (const ConfigError& e) {
+      why = e.what();
+    }
+  };
+  attempt(res.linear, res.linear_reason, [&] { return fit_linear(c, p); });
+  attempt(res.hertz, res.hertz_reason, [&] { return fit_hertz(c, p); });
+  if (res.hertz) {
+    attempt(res.sneddon, res.sneddon_reason, [&] { return detail::fit_sneddon_from(c, p, *res.hertz); });
+  } else {
+    res.sneddon_reason = "the Sneddon fit starts from the Hertz fit, which failed: " + res.hertz_reason;
+  }
+  const ModelFit* best = nullptr;
+  for (const auto* m : {&res.linear, &res.hertz, &res.sneddon})
+    if (*m && (!best || (*m)->aic < best->aic)) best = &**m;
+  if (!best) {
+    return all_absent("no model could be fitted: linear: " + res.linear_reason +
+                      "; hertz: " + res.hertz_reason);
+  }
   res.chosen = best->model;
   res.contact_z_m = Value::of(best->contact_z_m);
 

@@ -256,3 +256,21 @@ TEST(AnalysisIndentation, DescriptorsBeyondTheDeepestSampleAreAbsentWithReason) 
   EXPECT_FALSE(r.k_tangent_N_per_m[3]);
   EXPECT_TRUE(r.k_tangent_N_per_m[0]);
 }
+
+TEST(AnalysisIndentation, ThicknessCorrectedHertzCurveGivesTheModulusWhenThicknessIsGiven) {
+  const Thickness t{10e-3, Bonding::bonded};
+  SynthSpec s = hertz_spec(0.002, 1e-6);
+  s.i_top_A = 1.3;
+  s.object_force = [t](double d) { return hertz_force_N(d, kEstar, R) * thickness_factor(d, R, t); };
+  IndentationParams p;
+  const ModelFit plain = fit_hertz(synth_curve(s), p);
+  p.thickness = t;
+  const ModelFit corrected = fit_hertz(synth_curve(s), p);
+  report("E* with thickness", *corrected.Estar_Pa, kEstar);
+  EXPECT_LT(rel(*corrected.Estar_Pa, kEstar), 0.01);
+  EXPECT_GT(*plain.Estar_Pa, 1.1 * kEstar);  // ignoring the bottom overestimates E*
+  EXPECT_NEAR(corrected.contact_z_m, s.contact_z_m, 5e-6);
+  // The tangent includes the factor's derivative.
+  const double d = 2e-3, h = 1e-9;
+  EXPECT_NEAR(corrected.stiffness_N_per_m(d) / ((corrected.force_N(d + h) - corrected.force_N(d - h)) / (2 * h)), 1.0, 1e-5);
+}

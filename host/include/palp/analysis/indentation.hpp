@@ -117,7 +117,8 @@ ModelFit fit_sneddon(const Curve& c, const IndentationParams& p);
 
 struct IndentationResult {
   std::optional<ModelFit> linear, hertz, sneddon;
-  std::optional<Model> chosen;           ///< lowest AIC
+  std::string linear_reason, hertz_reason, sneddon_reason;  ///< why a fit is absent
+  std::optional<Model> chosen;           ///< lowest AIC among the fits present
   std::string fit_reason;                ///< why no fit, when none
   bool has_baseline = false;
   int n_loading = 0, n_unloading = 0;
@@ -133,8 +134,9 @@ struct IndentationResult {
   std::vector<Value> k_tangent_N_per_m;  ///< chosen model's dF_o/ddelta at tangent_depths_m
 };
 
-/// The whole analysis. Throws ConfigError on malformed input; no contact (no sample with
-/// i >= I_c) gives a result whose values are absent with that reason.
+/// The whole analysis. Throws ConfigError on malformed input (size mismatch, NaN, bad params,
+/// too few contact samples); no contact (no sample with i >= I_c) gives a result whose values
+/// are absent with that reason, and a model that cannot be fitted is absent with its reason.
 IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p = {});
 
 /// Model-free descriptors, exposed for tests and tools. depth = z - origin_z per sample
