@@ -274,3 +274,38 @@ TEST(AnalysisIndentation, ThicknessCorrectedHertzCurveGivesTheModulusWhenThickne
   const double d = 2e-3, h = 1e-9;
   EXPECT_NEAR(corrected.stiffness_N_per_m(d) / ((corrected.force_N(d + h) - corrected.force_N(d - h)) / (2 * h)), 1.0, 1e-5);
 }
+
+TEST(AnalysisIndentation, PerRepetitionAnalysisGivesMeanAndSdOfDescriptors) {
+  const SynthSpec s = hertz_spec(0.002, 1e-6);
+  const RepetitionSummary sum = analyze_repetitions(synth_curve(s));
+  ASSERT_EQ(sum.per_rep.size(), 5u);
+  EXPECT_EQ(sum.delta0_m.n, 5);
+  ASSERT_TRUE(sum.delta0_m.mean && sum.delta0_m.sd);
+  EXPECT_LT(rel(*sum.delta0_m.mean.value, 2.935e-3), 0.01);
+  EXPECT_GT(*sum.delta0_m.sd.value, 0.0);
+  EXPECT_LT(*sum.delta0_m.sd.value, 0.01 * 2.935e-3);
+  ASSERT_EQ(sum.k_tangent_N_per_m.size(), 4u);
+  EXPECT_LT(rel(*sum.k_tangent_N_per_m[0].mean.value, hertz_stiffness_N_per_m(1e-3, kEstar, R)), 0.01);
+}
+
+TEST(AnalysisIndentation, ElasticCurveHasNoHysteresisAndLaggingUnloadHasSome) {
+  const SynthSpec s = hertz_spec(0.0, 0.0);
+  Curve c = synth_curve(s);
+  const auto none = hysteresis(c, IndentationParams{}, s.contact_z_m);
+  ASSERT_EQ(none.size(), 5u);
+  ASSERT_TRUE(none[0].dissipated_J && none[0].ratio);
+  EXPECT_NEAR(*none[0].ratio.value, 0.0, 1e-9);
+  // Unloading at 90 % of the loading force at the same depth: 10 % of the work is lost.
+  const IndentationParams p;
+  for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
+    const Eigen::Index in_rep = k % 2001;
+    if (in_rep > 1000) {
+      const double d = c.z_m[k] - s.contact_z_m;
+      const double Fo = 0.9 * hertz_force_N(d, kEstar, R);
+      c.i_A[k] = p.contact_current_A + (Fo + p.spring_N_per_m * d) / p.force_constant_N_per_A;
+    }
+  }
+  const auto some = hysteresis(c, p, s.contact_z_m);
+  ASSERT_TRUE(some[2].ratio);
+  EXPECT_NEAR(*some[2].ratio.value, 0.1, 0.002);
+}

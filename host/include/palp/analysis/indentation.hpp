@@ -158,6 +158,27 @@ struct RepetitionStats {
 RepetitionStats repetition_mean_sd(const Curve& c, const IndentationParams& p, double contact_z_m,
                                    const Eigen::VectorXd& depth_grid_m);
 
+/// Hysteresis of one repetition's load-unload cycle: the loop integral of the coil force over z
+/// (the springs' part closes to zero), i.e. the energy dissipated per cycle, and its ratio to the
+/// work done on the loading branch by F_o. Absent when the repetition has no unloading branch.
+struct Hysteresis {
+  Value dissipated_J;
+  Value ratio;  ///< dissipated / loading work (0..1)
+};
+/// One entry per repetition, depths from contact_z_m.
+std::vector<Hysteresis> hysteresis(const Curve& c, const IndentationParams& p, double contact_z_m);
+
+/// Each repetition analysed on its own (analyze_indentation on its samples), with the mean and
+/// s.d. over repetitions of the main descriptors (a repetition without a value is skipped).
+struct RepetitionSummary {
+  std::vector<IndentationResult> per_rep;
+  struct Stat { Value mean, sd; int n = 0; };
+  Stat contact_z_m, delta0_m, k_tangent_at_delta0_N_per_m, k_fd_N_per_m, k_window_N_per_m,
+      k_fd_paper_N_per_m;
+  std::vector<Stat> k_tangent_N_per_m;  ///< at IndentationParams::tangent_depths_m
+};
+RepetitionSummary analyze_repetitions(const Curve& c, const IndentationParams& p = {});
+
 /// Mean and sample s.d. of a per-repetition scalar (absent values skipped; sd absent below 2).
 struct MeanSd {
   Value mean, sd;
