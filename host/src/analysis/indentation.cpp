@@ -203,6 +203,7 @@ IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p
   } else {
     res.sneddon_reason = "the Sneddon fit starts from the Hertz fit, which failed: " + res.hertz_reason;
   }
+  res.contact_estimates = estimate_contact(c, p);
   const ModelFit* best = nullptr;
   for (const auto* m : {&res.linear, &res.hertz, &res.sneddon})
     if (*m && (!best || (*m)->aic < best->aic)) best = &**m;

@@ -115,12 +115,28 @@ ModelFit fit_linear(const Curve& c, const IndentationParams& p);
 ModelFit fit_hertz(const Curve& c, const IndentationParams& p);
 ModelFit fit_sneddon(const Curve& c, const IndentationParams& p);
 
+/// An initial contact estimate (the fits refine z_c; these only say where the data put it).
+struct ContactEstimate {
+  std::string method;  ///< "first_sample_at_Ic", "baseline_deviation", "piecewise_fit",
+                       ///< "ratio_of_variances"
+  Value z_m;
+};
+/// Without a baseline: the first loading sample at i >= I_c (median over repetitions). With a
+/// baseline (analysis-notes): on G = K_f (i - I_c) - k_v z (= F_o + const, whatever z_c) of
+/// each repetition's loading branch, median over repetitions:
+///   baseline_deviation  first sample from which G stays above baseline mean + 5 s.d.
+///   piecewise_fit       constant + line, least squares over the breakpoint, on the lowest
+///                       5 % of G's rise; z where the line meets the constant
+///   ratio_of_variances  argmax of var(next w/2) / var(previous w/2), w = max(10, n/10)
+std::vector<ContactEstimate> estimate_contact(const Curve& c, const IndentationParams& p = {});
+
 struct IndentationResult {
   std::optional<ModelFit> linear, hertz, sneddon;
   std::string linear_reason, hertz_reason, sneddon_reason;  ///< why a fit is absent
   std::optional<Model> chosen;           ///< lowest AIC among the fits present
   std::string fit_reason;                ///< why no fit, when none
   bool has_baseline = false;
+  std::vector<ContactEstimate> contact_estimates;  ///< initial estimates (see estimate_contact)
   int n_loading = 0, n_unloading = 0;
   double F0_N = 0.0;                     ///< K_f (I_0 - I_c)
   Value contact_z_m;                     ///< of the chosen model
