@@ -58,10 +58,11 @@ void validate(const Curve& c, const IndentationParams& p) {
   if (!finite_params(p) || !(p.force_constant_N_per_A > 0.0) || !(p.tip_radius_m > 0.0) ||
       !(p.spring_N_per_m >= 0.0) || !(p.poisson >= 0.0 && p.poisson < 1.0) ||
       !(p.window_hi_m > p.window_lo_m) || !(p.local_half_width_m > 0.0) || p.min_points < 3 ||
-      (p.thickness && !(p.thickness->thickness_m > 0.0)))
+      (p.thickness && !(p.thickness->thickness_m > 0.0)) ||
+      (p.force_noise_N && !(std::isfinite(*p.force_noise_N) && *p.force_noise_N > 0.0)))
     throw ConfigError("indentation parameters: need finite K_f > 0, R > 0, k_v >= 0, 0 <= nu < 1, "
-                      "window_hi_m > window_lo_m, local_half_width_m > 0, min_points >= 3 and a "
-                      "positive thickness when one is given");
+                      "window_hi_m > window_lo_m, local_half_width_m > 0, min_points >= 3, and a "
+                      "positive thickness and force noise when given");
 }
 
 Eigen::VectorXd coil_force_N(const Curve& c, const IndentationParams& p) {

@@ -127,6 +127,9 @@ ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationPa
   m.n = static_cast<int>(lm.r.size());
   const int np = static_cast<int>(lm.p.size());
   m.aic = m.n * std::log(std::max(lm.rss, 1e-300) / m.n) + 2.0 * np;
+  m.rms_residual_N = m.n > np ? std::sqrt(lm.rss / (m.n - np)) : 0.0;
+  if (p.force_noise_N && *p.force_noise_N > 0.0)
+    m.reduced_chi2 = m.rms_residual_N * m.rms_residual_N / (*p.force_noise_N * *p.force_noise_N);
   // R^2 of the object force F_o = F - k_v (z - z_c) (residuals are the same as for F).
   const Eigen::VectorXd Fo = s.d->F_N - s.kv * (s.d->z_m.array() - lm.p[1]).matrix();
   const double tss = (Fo.array() - Fo.mean()).square().sum();

@@ -330,3 +330,52 @@ TEST(AnalysisIndentation, BaselineEstimatesAreUsedOnlyWithABaselineAndLandNearCo
   }
   EXPECT_NEAR(*r.contact_z_m.value, s.contact_z_m, 5e-6);
 }
+
+TEST(AnalysisIndentation, StandardErrorsMatchTheScatterOverNoiseRealisations) {
+  std::vector<double> est, se_e, zc, se_z;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SynthSpec s = hertz_spec(0.002, 0.0);
+    s.reps = 1;
+    s.seed = seed;
+    const ModelFit f = fit_hertz(synth_curve(s), {});
+    est.push_back(*f.Estar_Pa);
+    se_e.push_back(f.se[0]);
+    zc.push_back(f.contact_z_m);
+    se_z.push_back(f.contact_z_se_m);
+  }
+  auto sd = [](const std::vector<double>& v) {
+    double m = 0, m2 = 0;
+    for (double x : v) { m += x; m2 += x * x; }
+    m /= v.size();
+    return std::sqrt((m2 - v.size() * m * m) / (v.size() - 1));
+  };
+  auto mean = [](const std::vector<double>& v) { double m = 0; for (double x : v) m += x; return m / v.size(); };
+  std::printf("  E*: scatter %.1f Pa, mean SE %.1f Pa; z_c: scatter %.2f um, mean SE %.2f um\n",
+              sd(est), mean(se_e), sd(zc) * 1e6, mean(se_z) * 1e6);
+  EXPECT_GT(sd(est) / mean(se_e), 0.5);
+  EXPECT_LT(sd(est) / mean(se_e), 2.0);
+  EXPECT_GT(sd(zc) / mean(se_z), 0.5);
+  EXPECT_LT(sd(zc) / mean(se_z), 2.0);
+}
+
+TEST(AnalysisIndentation, ReducedChiSquareNearOneForTheTrueModelWithTheNoiseFloorGiven) {
+  IndentationParams p;
+  p.force_noise_N = p.force_constant_N_per_A * 0.002;
+  const Curve c = synth_curve(hertz_spec(0.002, 0.0));
+  const ModelFit h = fit_hertz(c, p), l = fit_linear(c, p);
+  ASSERT_TRUE(h.reduced_chi2 && l.reduced_chi2);
+  EXPECT_NEAR(*h.reduced_chi2, 1.0, 0.1);
+  EXPECT_GT(*l.reduced_chi2, 10.0);  // the wrong model leaves structure in the residuals
+}
+
+TEST(AnalysisIndentation, AnalysisIsDeterministicAndIndependentOfWhatRanBefore) {
+  const Curve a = synth_curve(hertz_spec(0.002, 1e-6));
+  const Curve b = synth_curve(linear_spec(0.002, 1e-6));
+  const IndentationResult first = analyze_indentation(a);
+  (void)analyze_indentation(b);
+  const IndentationResult again = analyze_indentation(a);
+  ASSERT_TRUE(first.hertz && again.hertz);
+  EXPECT_EQ(first.hertz->params, again.hertz->params);
+  EXPECT_EQ(*first.delta0_m.value, *again.delta0_m.value);
+  EXPECT_EQ(*first.k_fd_N_per_m.value, *again.k_fd_N_per_m.value);
+}

@@ -44,6 +44,8 @@ struct IndentationParams {
   double local_half_width_m = 25e-6;       ///< F_o(d): local least squares over d +- this
   std::vector<double> tangent_depths_m{1e-3, 2e-3, 3e-3, 4e-3};
   int min_points = 10;                     ///< fewer loading samples in contact: ConfigError
+  /// The force noise floor (rms), e.g. K_f x the current noise; gives each fit a reduced chi^2.
+  std::optional<double> force_noise_N;
 };
 
 /// A recording: probe position and coil current per sample, optional repetition number
@@ -78,6 +80,9 @@ struct ModelFit {
   double r2 = 0.0;           ///< of the measured force F
   double aic = 0.0;
   int n = 0;
+  double rms_residual_N = 0.0;         ///< sqrt(rss / (n - p))
+  std::optional<double> reduced_chi2;  ///< rms_residual^2 / force_noise^2, when the noise is given
+                                       ///< (near 1: the model is adequate)
   double contact_z_m = 0.0;
   double contact_z_se_m = 0.0;
   std::optional<double> k_N_per_m;     ///< linear
