@@ -129,16 +129,29 @@ void detail::require_contact(const FitData& d, const IndentationParams& p) {
 
 Value local_force_N(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo, double at,
                     double hw) {
-  double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, lo = INFINITY, hi = -INFINITY;
   for (Eigen::Index k = 0; k < depth.size(); ++k) {
     if (std::abs(depth[k] - at) > hw) continue;
     const double x = depth[k] - at;
     s0 += 1; sx += x; sy += Fo[k]; sxx += x * x; sxy += x * Fo[k];
+    lo = std::min(lo, x); hi = std::max(hi, x);
   }
+  const std::string where = " within +-" + fmt(hw * 1e3) + " mm of " + fmt(at * 1e3) + " mm depth";
+  if (s0 < 2) {
+    const double deepest = depth.size() ? depth.maxCoeff() : -INFINITY;
+    if (deepest < at)
+      return Value::absent("the loading branch does not reach " + fmt(at * 1e3) +
+                           " mm depth (deepest " + fmt(deepest * 1e3) + " mm)");
+    return Value::absent("fewer than 2 samples" + where +
+                         ": the depth steps are coarser than the window");
+  }
+  // The local line must be supported over at least half the window, and on both sides of `at`
+  // or close to it: a staircase ramp whose steps are coarser than the window gives one level.
+  if (!(hi - lo >= hw) || lo > 0.5 * hw || hi < -0.5 * hw)
+    return Value::absent("the samples" + where + " span only " + fmt((hi - lo) * 1e6) +
+                         " um (from " + fmt(lo * 1e6) + " to " + fmt(hi * 1e6) +
+                         " um): the depth steps are coarser than the window");
   const double det = s0 * sxx - sx * sx;
-  if (s0 < 2 || !(det > 1e-12 * s0 * s0 * hw * hw))
-    return Value::absent("fewer than 2 distinct depths within +-" + fmt(hw * 1e3) + " mm of " +
-                         fmt(at * 1e3) + " mm depth");
   return Value::of((sxx * sy - sx * sxy) / det);  // the local line's value at `at`
 }
 

@@ -379,3 +379,21 @@ TEST(AnalysisIndentation, AnalysisIsDeterministicAndIndependentOfWhatRanBefore) 
   EXPECT_EQ(*first.delta0_m.value, *again.delta0_m.value);
   EXPECT_EQ(*first.k_fd_N_per_m.value, *again.k_fd_N_per_m.value);
 }
+
+TEST(AnalysisIndentation, PaperStaircaseTooCoarseForLocalValuesGivesReasonButModelDescriptors) {
+  // The paper's ramp: 0.01 A steps held 100 ms (here 20 samples each): about 110 um of depth per
+  // step at 0.25 mm on the solid, wider than the +-25 um window of F_o(d).
+  SynthSpec s = hertz_spec(0.002, 1e-6);
+  s.i_step_A = 0.01;
+  s.samples_per_level = 20;
+  const IndentationResult r = analyze_indentation(synth_curve(s));
+  EXPECT_FALSE(r.k_fd_N_per_m);
+  std::printf("  k_fd reason: %s\n", r.k_fd_N_per_m.reason.c_str());
+  EXPECT_NE(r.k_fd_N_per_m.reason.find("coarser than the window"), std::string::npos) << r.k_fd_N_per_m.reason;
+  ASSERT_TRUE(r.delta0_m && r.k_tangent_at_delta0_N_per_m);
+  report("staircase delta0", *r.delta0_m.value, 2.935e-3);
+  report("staircase k at delta0", *r.k_tangent_at_delta0_N_per_m.value, 745.55);
+  EXPECT_LT(rel(*r.delta0_m.value, 2.935e-3), 0.01);
+  EXPECT_LT(rel(*r.k_tangent_at_delta0_N_per_m.value, 745.55), 0.01);
+  EXPECT_NEAR(*r.contact_z_m.value, s.contact_z_m, 5e-6);
+}

@@ -160,8 +160,10 @@ struct IndentationResult {
 /// are absent with that reason, and a model that cannot be fitted is absent with its reason.
 IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p = {});
 
-/// Model-free descriptors, exposed for tests and tools. depth = z - origin_z per sample
-/// (origin_z per repetition when `origin_per_rep` is given, indexed like the loading order).
+/// Model-free descriptors over (depth, F_o) pairs, exposed for tests and tools.
+/// local_force_N: the least-squares line's value at `at_m` over the samples within
+/// +-half_width_m; absent when they span less than half_width_m of depth or lie all on one side
+/// beyond half_width_m/2 (a staircase ramp's steps coarser than the window).
 Value local_force_N(const Eigen::VectorXd& depth_m, const Eigen::VectorXd& Fo_N, double at_m,
                     double half_width_m);
 Value finite_difference_stiffness(const Eigen::VectorXd& depth_m, const Eigen::VectorXd& Fo_N,
