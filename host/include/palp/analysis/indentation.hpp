@@ -11,10 +11,16 @@
 // with its standard error. Models M (analysis-notes.md, "Quasi-static curves"):
 //   linear  k delta (no offset: z_c is where it extrapolates to zero force), Hertz sphere,
 //   exact Sneddon sphere, each optionally times the finite-thickness factor; E* and E (nu given).
-// A force offset c is fitted for Hertz/Sneddon only when the recording has a baseline; here a
-// baseline means loading samples below the contact threshold current (i < I_c): the paper's
-// protocol starts its ramp at I_c already in contact, and then z_c and c are not separable.
+// Below z_c the probe is in air (F = k_v (z - z_c), F_o = 0). A force offset c is fitted for
+// Hertz/Sneddon only when the recording has a baseline; here a baseline means at least 5
+// loading samples below I_c - 0.02 A (the ramp began before contact): the paper's protocol
+// starts its ramp at I_c already in contact, and then z_c and c are not separable.
+// The fits pool the loading branches of all repetitions (one z_c: the arm holds its pose);
+// start: a grid profile over z_c (closed-form stiffness per candidate), then a bounded
+// Levenberg-Marquardt with an analytic Jacobian; no state carried between calls.
 // Model choice: lowest AIC = n ln(RSS/n) + 2p. Standard errors: Cov = (J^T J)^-1 RSS/(n - p).
+// Model-free descriptors (k_fd, window slope) use the chosen model's z_c; the paper variants
+// take each repetition's first sample at i >= I_c as depth zero.
 //
 // Errors: malformed input (size mismatch, NaN/inf, too few points, bad parameters) throws
 // palp::ConfigError with a message that names the problem. A value that cannot be computed from
