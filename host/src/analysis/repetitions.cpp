@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "palp/analysis/indentation.hpp"
+#include "palp/error.hpp"
 
 namespace palp::analysis {
 
@@ -64,7 +65,21 @@ std::vector<Hysteresis> hysteresis(const Curve& c, const IndentationParams& p, d
 RepetitionSummary analyze_repetitions(const Curve& c, const IndentationParams& p) {
   validate(c, p);
   RepetitionSummary s;
-  for (const Curve& one : split(c)) s.per_rep.push_back(analyze_indentation(one, p));
+  for (const Curve& one : split(c)) {
+    try {
+      s.per_rep.push_back(analyze_indentation(one, p));
+    } catch (const ConfigError& e) {  // e.g. too few points in this repetition: say so, go on
+      IndentationResult r;
+      r.fit_reason = e.what();
+      r.F0_N = p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A);
+      r.tangent_depths_m = p.tangent_depths_m;
+      for (Value* v : {&r.contact_z_m, &r.delta0_m, &r.k_tangent_at_delta0_N_per_m, &r.k_fd_N_per_m,
+                       &r.k_window_N_per_m, &r.k_fd_paper_N_per_m, &r.k_window_paper_N_per_m})
+        *v = Value::absent(e.what());
+      r.k_tangent_N_per_m.assign(p.tangent_depths_m.size(), Value::absent(e.what()));
+      s.per_rep.push_back(std::move(r));
+    }
+  }
   auto collect = [&](Value IndentationResult::*field) {
     std::vector<Value> v;
     for (const auto& r : s.per_rep) v.push_back(r.*field);

@@ -397,3 +397,18 @@ TEST(AnalysisIndentation, PaperStaircaseTooCoarseForLocalValuesGivesReasonButMod
   EXPECT_LT(rel(*r.k_tangent_at_delta0_N_per_m.value, 745.55), 0.01);
   EXPECT_NEAR(*r.contact_z_m.value, s.contact_z_m, 5e-6);
 }
+
+TEST(AnalysisIndentation, RepetitionWithTooFewPointsIsAbsentWithReasonOthersCount) {
+  Curve c = synth_curve(hertz_spec(0.002, 1e-6));
+  // Append a sixth repetition with only 3 samples.
+  const Eigen::Index n = c.z_m.size();
+  c.z_m.conservativeResize(n + 3);
+  c.i_A.conservativeResize(n + 3);
+  c.rep.conservativeResize(n + 3);
+  for (int k = 0; k < 3; ++k) { c.z_m[n + k] = 12.4e-3 + k * 1e-5; c.i_A[n + k] = 0.5 + 0.001 * k; c.rep[n + k] = 6; }
+  const RepetitionSummary sum = analyze_repetitions(c);
+  ASSERT_EQ(sum.per_rep.size(), 6u);
+  EXPECT_FALSE(sum.per_rep[5].delta0_m);
+  EXPECT_NE(sum.per_rep[5].delta0_m.reason.find("too few points"), std::string::npos);
+  EXPECT_EQ(sum.delta0_m.n, 5);
+}

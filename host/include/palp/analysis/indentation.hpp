@@ -198,7 +198,9 @@ struct Hysteresis {
 std::vector<Hysteresis> hysteresis(const Curve& c, const IndentationParams& p, double contact_z_m);
 
 /// Each repetition analysed on its own (analyze_indentation on its samples), with the mean and
-/// s.d. over repetitions of the main descriptors (a repetition without a value is skipped).
+/// s.d. over repetitions of the main descriptors (a repetition without a value is skipped; one
+/// that cannot be analysed, e.g. too few points, has every value absent with the reason).
+/// Malformed input as a whole (NaN, sizes) still throws ConfigError.
 struct RepetitionSummary {
   std::vector<IndentationResult> per_rep;
   struct Stat { Value mean, sd; int n = 0; };
