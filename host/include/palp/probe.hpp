@@ -209,7 +209,9 @@ class Probe {
   std::int32_t home(double hold_current_A = -0.3, double seconds = 1.0);
   const std::vector<ZeroingRecord>& zeroing() const;
 
-  /// Stops program and stream (zero current) and closes. Safe to call twice.
+  /// Stops program and stream (zero current) and closes. Safe to call twice. Afterwards info(),
+  /// handshake() and uri() still answer; every device call throws ConnectionError. A moved-from
+  /// Probe may only be destroyed or assigned to.
   void close();
 
  private:

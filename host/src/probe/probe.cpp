@@ -59,6 +59,8 @@ DeviceInfo to_info(const proto::DeviceInfo& d) {
 Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->session = std::make_unique<Session>(uri, options);
   impl_->info = to_info(impl_->session->device_info());
+  impl_->handshake = impl_->session->handshake();
+  impl_->uri = uri;
 }
 
 Probe::~Probe() {
@@ -76,8 +78,8 @@ Session& Probe::Impl::s() {
 }
 
 const DeviceInfo& Probe::info() const { return impl_->info; }
-const Handshake& Probe::handshake() const { return impl_->session->handshake(); }
-const std::string& Probe::uri() const { return impl_->session->uri(); }
+const Handshake& Probe::handshake() const { return impl_->handshake; }
+const std::string& Probe::uri() const { return impl_->uri; }
 
 Status Probe::status() {
   Session& s = impl_->s();
@@ -249,7 +251,9 @@ std::size_t Probe::drain(std::vector<StreamItem>& out, std::size_t max) {
 void Probe::on_stream(std::function<void(const StreamItem&)> callback) {
   impl_->s().queue().set_callback(std::move(callback));
 }
-ClockMapping Probe::clock() const { return impl_->session->clock(); }
+ClockMapping Probe::clock() const {
+  return impl_ && impl_->session ? impl_->session->clock() : ClockMapping{};
+}
 
 void Probe::close() {
   if (!impl_ || !impl_->session) return;

@@ -11,7 +11,9 @@ namespace palp {
 
 struct Probe::Impl {
   std::unique_ptr<detail::Session> session;
-  DeviceInfo info;
+  DeviceInfo info;  // kept, with the handshake and the URI, so they outlive close()
+  Handshake handshake;
+  std::string uri;
   StreamInfo stream;
   std::uint64_t finished_before_start = 0;
   std::uint64_t contact_before_start = 0;

@@ -151,4 +151,21 @@ TEST(ProbeConnect, AHoldProgramRunsToItsEndAndAShortWaitTimesOutWithHealth) {
   EXPECT_EQ(probe.wait(2s).end, palp::proto::ProgramEnd::stopped_by_host);
 }
 
+TEST(ProbeConnect, AfterCloseIdentityStaysReadableAndDeviceCallsSayTheProbeIsClosed) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  probe.close();
+  probe.close();  // twice is fine
+  EXPECT_EQ(probe.info().serial, "SIM-0001");
+  EXPECT_EQ(probe.uri(), sim.uri());
+  EXPECT_FALSE(probe.handshake().missing_features);
+  try {
+    probe.status();
+    FAIL() << "a closed probe answered";
+  } catch (const palp::ConnectionError& e) {
+    EXPECT_EQ(std::string(e.what()), "this Probe is closed");
+  }
+}
+
 }  // namespace
