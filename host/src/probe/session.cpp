@@ -199,7 +199,14 @@ void Session::io_loop() {
       service_timers();
     } catch (const ConnectionError& e) {
       link_lost(e.what());
-      if (!options_.reconnect || !reconnect(e.what())) return;
+      if (!options_.reconnect) {
+        std::lock_guard lock(mu_);
+        dead_ = "the link to " + uri_ + " was lost (" + e.what() +
+                ") and ConnectOptions::reconnect is off: connect again";
+        cv_.notify_all();
+        return;
+      }
+      if (!reconnect(e.what())) return;
     } catch (const TimeoutError&) {
       // a heartbeat write that could not go out in time: the read side will tell if it is gone
     }

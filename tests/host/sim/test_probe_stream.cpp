@@ -246,4 +246,20 @@ TEST(ProbeShutdown, ClosingDuringAProgramLeavesTheDeviceWithZeroCurrent) {
   EXPECT_FALSE(st.streaming);
 }
 
+TEST(ProbeStream, WithReconnectOffALostLinkFailsEveryCallAtOnceSayingSo) {
+  auto sim = std::make_unique<SimProcess>(std::vector<std::string>{}, false);
+  ASSERT_TRUE(sim->ok());
+  palp::ConnectOptions o;
+  o.reconnect = false;
+  palp::Probe probe(sim->uri(), o);
+  sim->stop();
+  std::this_thread::sleep_for(200ms);
+  try {
+    probe.status();
+    FAIL() << "status() answered without a device";
+  } catch (const palp::ConnectionError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("ConnectOptions::reconnect is off: connect again"));
+  }
+}
+
 }  // namespace
