@@ -187,11 +187,16 @@ ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
   }
   const int np = s.offset ? 3 : 2;
   Eigen::VectorXd p0(np), lo(np), hi(np), typ(np);
-  p0 << theta, zc;
-  lo << 0.0, range.lo;
-  hi << INFINITY, range.hi;
+  // element by element: with the offset the vectors hold three (a comma initializer must fill all)
+  p0[0] = theta;
+  p0[1] = zc;
+  lo[0] = 0.0;
+  lo[1] = range.lo;
+  hi[0] = INFINITY;
+  hi[1] = range.hi;
   const double span = std::max(d.z_m.maxCoeff() - d.z_m.minCoeff(), 1e-6);
-  typ << std::abs(theta) + 1e-12, span;
+  typ[0] = std::abs(theta) + 1e-12;
+  typ[1] = span;
   if (s.offset) {
     p0[2] = off; lo[2] = -INFINITY; hi[2] = INFINITY;
     typ[2] = std::max(d.F_N.cwiseAbs().maxCoeff(), 1e-6);
