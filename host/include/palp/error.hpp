@@ -10,7 +10,12 @@
 //   ├── DeviceError              the device refused a request (its Nak, with the error code)
 //   ├── FaultError               the device's fault latch tripped while the SDK waited on it
 //   ├── ProtocolError            the device sent bytes the SDK cannot accept
-//   └── RecordingError           a recording file is malformed (names the file, line, problem)
+//   ├── RecordingError           a recording file is malformed (names the file, line, problem)
+//   ├── RobotRejectedError       the robot bridge refused a command (its result code; for a bad
+//   │                            parameter the register's address and name)
+//   ├── RobotFaultError          the robot faulted or was safety-stopped during a motion
+//   └── RobotLinkError           (a ConnectionError) the robot bridge is unreachable or its
+//                                heartbeat stopped
 #pragma once
 
 #include <cstdint>
@@ -101,6 +106,36 @@ class RecordingError : public Error {
   std::string file_;
   std::size_t line_;
   std::string problem_;
+};
+
+class RobotRejectedError : public Error {
+ public:
+  /// result: the proto::rb::Result rejection code; register_address: the offending register
+  /// (rejected_bad_parameter), else 0xFFFF.
+  RobotRejectedError(const std::string& message, std::uint16_t result,
+                     std::uint16_t register_address = 0xFFFF)
+      : Error(message), result_(result), register_address_(register_address) {}
+  std::uint16_t result() const { return result_; }
+  std::uint16_t register_address() const { return register_address_; }
+
+ private:
+  std::uint16_t result_;
+  std::uint16_t register_address_;
+};
+
+class RobotFaultError : public Error {
+ public:
+  /// result: the proto::rb::Result the motion ended with (robot_fault, safety_stopped, watchdog).
+  RobotFaultError(const std::string& message, std::uint16_t result) : Error(message), result_(result) {}
+  std::uint16_t result() const { return result_; }
+
+ private:
+  std::uint16_t result_;
+};
+
+class RobotLinkError : public ConnectionError {
+ public:
+  using ConnectionError::ConnectionError;
 };
 
 }  // namespace palp
