@@ -18,9 +18,15 @@ double attenuation(double d, double z) {
 
 double disc_area(double diameter) { return 0.25 * std::numbers::pi * diameter * diameter; }
 
-// The wavy top (without the footprint check).
-double wave_z(const PadPhantomSpec& s, double y_m) {
-  return s.wave_amplitude_m * std::sin(2.0 * std::numbers::pi * y_m / s.wave_length_m);
+// The wavy, possibly tilted top (without the footprint check).
+double top_z(const PadPhantomSpec& s, double x_m, double y_m) {
+  return s.wave_amplitude_m * std::sin(2.0 * std::numbers::pi * y_m / s.wave_length_m) +
+         std::tan(s.surface_tilt_about_y_rad) * (x_m - 0.5 * s.size_x_m);
+}
+
+// How far the top rises above or sinks below z = 0 anywhere on the pad.
+double top_excursion(const PadPhantomSpec& s) {
+  return s.wave_amplitude_m + std::abs(std::tan(s.surface_tilt_about_y_rad)) * 0.5 * s.size_x_m;
 }
 
 }  // namespace
@@ -32,9 +38,13 @@ PadPhantom::PadPhantom(PadPhantomSpec spec)
   if (s.grid_inset_x_m + span > s.size_x_m || s.grid_inset_y_m + span > s.size_y_m) {
     throw PhantomError(name() + ": the grid runs past the pad");
   }
+  if (!(std::abs(s.surface_tilt_about_y_rad) < std::numbers::pi / 4.0)) {
+    throw PhantomError(name() + ": the surface tilt must be below 45 degrees");
+  }
   const double r = 0.5 * s.channel_diameter_m;
-  if (s.shallow.depth_m <= r || s.deep.depth_m - s.wave_amplitude_m <= r ||
-      s.deep.depth_m + r >= s.thickness_m - s.wave_amplitude_m) {
+  const double top = top_excursion(s);
+  if (s.shallow.depth_m <= r || s.deep.depth_m - top <= r ||
+      s.deep.depth_m + r >= s.thickness_m - s.wave_amplitude_m || top >= s.thickness_m) {
     throw PhantomError(name() + ": a channel breaks through the top or the base");
   }
   for (int ch = 1; ch <= 6; ++ch) {
@@ -48,7 +58,7 @@ double PadPhantom::surface_z_m(double x_m, double y_m) const {
   if (x_m < 0.0 || x_m > spec_.size_x_m || y_m < 0.0 || y_m > spec_.size_y_m) {
     return std::numeric_limits<double>::infinity();
   }
-  return wave_z(spec_, y_m);
+  return top_z(spec_, x_m, y_m);
 }
 
 double PadPhantom::channel_distance_m(int channel, double x_m, double y_m) const {
@@ -66,8 +76,7 @@ double PadPhantom::channel_distance_m(int channel, double x_m, double y_m) const
 
 double PadPhantom::channel_depth_below_surface_m(int channel, double x_m, double y_m) const {
   if (channel >= 1 && channel <= 3) {
-    (void)x_m;  // the deep channels are straight along x
-    return spec_.deep.depth_m - wave_z(spec_, y_m);
+    return spec_.deep.depth_m - top_z(spec_, x_m, y_m);  // straight along x, at a fixed z
   }
   if (channel >= 4 && channel <= 6) return spec_.shallow.depth_m;
   throw std::out_of_range("pad channel must be 1..6");
@@ -89,7 +98,7 @@ ContactParams PadPhantom::contact_params(double x_m, double y_m) const {
   p.e_star_Pa = s.e_star_Pa;
   p.retardation_time_s = s.retardation_time_s;
   p.participating_mass_kg = s.participating_mass_kg;
-  p.layer_thickness_m = s.thickness_m - wave_z(s, y_m);
+  p.layer_thickness_m = s.thickness_m - top_z(s, x_m, y_m);
   double compliance = s.base_compliance_m_per_N;
   for (int ch = 1; ch <= 6; ++ch) {
     const PadChannelClass& cls = ch <= 3 ? s.deep : s.shallow;

@@ -2,6 +2,7 @@
 #include "phantom_read.hpp"
 
 #include <exception>
+#include <numbers>
 
 #include "palp/plant/line_phantom.hpp"
 #include "palp/plant/pad_phantom.hpp"
@@ -87,9 +88,10 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
       "deep_channel_compliance_m_per_N", "deep_channel_effective_area_m2",
       "shallow_channel_columns", "shallow_channel_depth_m", "shallow_channel_length_m",
       "shallow_channel_compliance_m_per_N", "shallow_channel_effective_area_m2"};
+  const std::vector<std::string_view> optional = {"surface_tilt_about_y_deg"};
   // clang-format on
   const char* context = "kind = pad_2d";
-  f.reject_unknown(join(join(kCommonKeys, kSlsKeys), own), context);
+  f.reject_unknown(join(join(join(kCommonKeys, kSlsKeys), own), optional), context);
   f.require(own, context);
   PadPhantomSpec s;
   read_common(f, context, s);
@@ -102,6 +104,10 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
   s.grid_inset_y_m = f.number("grid_inset_y_m", 0.0, s.size_y_m);
   s.wave_amplitude_m = f.number("wave_amplitude_m", 0.0, 0.1);
   s.wave_length_m = f.number("wave_length_m", 1e-3, 10.0);
+  if (f.has("surface_tilt_about_y_deg")) {
+    s.surface_tilt_about_y_rad =
+        f.number("surface_tilt_about_y_deg", -44.0, 44.0) * std::numbers::pi / 180.0;
+  }
   s.e_star_Pa = f.number("e_star_Pa", 1.0, 1e10);
   s.base_compliance_m_per_N = f.number("base_compliance_m_per_N", 0.0, 1.0);
   s.retardation_time_s = f.number("retardation_time_s", 0.0, 10.0);

@@ -14,6 +14,10 @@ namespace {
 
 // The mount starts 1 m above the datum: out of reach of any phantom until it is placed.
 constexpr double kParkedMountZ_m = -1.0;
+// Beyond R + this above the surface under the apex the sphere's first touch is not searched
+// (it lies R (1 / cos(theta) - 1) above z_s on a slope theta: within R for slopes up to 60
+// degrees), so lateral travel above the surface costs no search per tick.
+constexpr double kTouchMargin_m = 0.5e-3;
 
 void require(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("PlantConfig: ") + what);
@@ -54,16 +58,34 @@ Plant::Plant(PlantConfig config, std::shared_ptr<const Phantom> phantom)
 
 void Plant::refresh_site() {
   if (phantom_) {
-    surface_z_m_ = phantom_->surface_z_m(mount_x_m_, mount_y_m_);
+    apex_surface_z_m_ = phantom_->surface_z_m(mount_x_m_, mount_y_m_);
     params_ = phantom_->contact_params(mount_x_m_, mount_y_m_);
   } else {
-    surface_z_m_ = std::numeric_limits<double>::infinity();
+    apex_surface_z_m_ = std::numeric_limits<double>::infinity();
     params_ = ContactParams{};
   }
+  surface_z_m_ = apex_surface_z_m_;
+  touch_valid_ = false;
+}
+
+void Plant::ensure_touch() {
+  if (touch_valid_ || !phantom_ || !std::isfinite(apex_surface_z_m_)) return;
+  const double r = config_.mechanics.tip_radius_m;
+  if (mount_z_m_ + s_m_ < apex_surface_z_m_ - r - kTouchMargin_m) return;  // far above
+  touch_ = sphere_touch(*phantom_, mount_x_m_, mount_y_m_, r);
+  touch_valid_ = true;
+  surface_z_m_ = touch_.apex_z_m;
+}
+
+SphereTouch Plant::site_touch() const {
+  if (touch_valid_) return touch_;
+  if (!phantom_) return SphereTouch{false, std::numeric_limits<double>::infinity()};
+  return sphere_touch(*phantom_, mount_x_m_, mount_y_m_, config_.mechanics.tip_radius_m);
 }
 
 void Plant::set_mount(double x_m, double y_m, double z_m) {
   move_mount(x_m, y_m, z_m);
+  ensure_touch();
   gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
   update_contact(0.0, 0.0);  // the tip now sits at the new depth, with no speed from the move
 }
@@ -84,6 +106,7 @@ void Plant::reset_state(const CoilState& state) {
   v_m_per_s_ = state.velocity_m_per_s;
   current_A_ = state.current_A;
   contact_model_.reset();
+  ensure_touch();
   gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
   update_contact(0.0, 0.0);
 }
@@ -142,6 +165,7 @@ void Plant::step(double dt_s, double v_coil_V) {
   s_m_ = s;
 
   // Contact at the end of the step; the mount's motion over the step counts as speed.
+  ensure_touch();
   const double offset = mount_z_m_ - surface_z_m_;
   double mount_rate = 0.0;
   if (std::isfinite(offset) && std::isfinite(gap_offset_prev_m_)) {

@@ -3,7 +3,9 @@
 //
 //   x runs across the columns (100 mm), y across the rows (90 mm);
 //   column c at x = inset_x + (c - 1) pitch, row r at y = inset_y + (r - 1) pitch;
-//   top surface z_s = A sin(2 pi y / lambda) (waves along y, constant along x);
+//   top surface z_s = A sin(2 pi y / lambda) + tan(tilt) (x - size_x / 2) (waves along y; the
+//   optional tilt about the y axis, default 0, turns the top about the pad's middle column
+//   line: a positive tilt puts the top deeper, toward +z, at larger x; the base stays flat);
 //   shallow channels 4, 5, 6 run along y under columns (2, 5, 8), their centre a fixed depth
 //   below the local surface (they follow the waves); deep channels 1, 2, 3 run along x under
 //   rows (8, 5, 2), straight, centre at a fixed z below the datum.
@@ -35,6 +37,7 @@ struct PadPhantomSpec : MaterialSpec {
   int grid_count = 9;
   double grid_pitch_m = 0.0, grid_inset_x_m = 0.0, grid_inset_y_m = 0.0;
   double wave_amplitude_m = 0.0, wave_length_m = 0.0;
+  double surface_tilt_about_y_rad = 0.0;  // file key surface_tilt_about_y_deg (optional, 0)
   double e_star_Pa = 0.0;
   double base_compliance_m_per_N = 0.0;
   double retardation_time_s = 0.0;

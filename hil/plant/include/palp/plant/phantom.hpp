@@ -92,7 +92,29 @@ std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file);
 /// The directory of the shipped phantom files (hil/plant/phantoms).
 std::filesystem::path phantom_dir();
 
-/// Load a shipped phantom by name: "hollow_1d", "solid_1d", "insert_1d", "pad_2d".
+/// Load a shipped phantom by name: "hollow_1d", "solid_1d", "insert_1d", "pad_2d",
+/// "pad_2d_steep", "plane_tilted_10".
 std::shared_ptr<const Phantom> load_shipped_phantom(std::string_view name);
+
+/// Where a spherical tip lowered along +z first touches a phantom (README.md "Sphere tip").
+struct SphereTouch {
+  bool touches = false;    ///< false: nothing under the tip's disc (all values +infinity / 0)
+  double apex_z_m = 0.0;   ///< the tip apex's z at first touch: the contact gap's zero
+  double point_x_m = 0.0;  ///< the touched point on the surface (phantom frame)
+  double point_y_m = 0.0;
+  double point_z_m = 0.0;
+  /// Unit surface normal at the touched point, pointing into the specimen (z component > 0):
+  /// from the sphere's centre to the touched point. (0, 0, 1) on a flat top.
+  std::array<double, 3> normal{0.0, 0.0, 1.0};
+};
+
+/// First touch of a sphere of radius_m whose apex is at (x_m, y_m): the apex height
+///   z_touch = min over u^2 + v^2 <= R^2 of [ z_s(x + u, y + v) + R - sqrt(R^2 - u^2 - v^2) ],
+/// found by a coarse polar scan of the disc, a pattern search down to R/256 and Newton steps on
+/// finite differences (the pattern search goes on to 1 nm where they do not improve): z_touch
+/// to far below 0.1 um and the normal to ~1e-6 rad on smooth surfaces, ~4 us a call. Where the
+/// best point is the apex itself (a flat top) z_touch equals z_s(x, y) exactly.
+/// Throws std::invalid_argument if radius_m <= 0.
+SphereTouch sphere_touch(const Phantom& phantom, double x_m, double y_m, double radius_m);
 
 }  // namespace palp::plant

@@ -7,7 +7,12 @@
 //                                             velocity Verlet, damping by the trapezoidal rule
 //                                             (second order; one contact evaluation per step)
 //   end stops: inelastic kinematic limits at stroke_min and stroke_max.
-// The tip apex sits at z_tip = z_mount + s in the phantom frame; delta = z_tip - z_s(x, y).
+// The tip apex sits at z_tip = z_mount + s in the phantom frame; delta = z_tip - z_touch(x, y),
+// where z_touch is the apex height at which the spherical tip first touches the surface (on a
+// slope the sphere touches off-axis, above z_s under the apex: sphere_touch in phantom.hpp).
+// z_touch is computed when the site (x, y) changes and the tip is within R + 0.5 mm above the
+// surface under the apex (z_s(x, y) stands in farther out, where nothing touches for slopes up
+// to 60 degrees; an apex off the footprint touches nothing).
 // No allocation per step; sensor reads draw counter-based noise keyed by the tick number.
 #pragma once
 
@@ -71,6 +76,10 @@ class Plant {
   double indentation_m() const;  // max(0, delta)
   double tip_z_m() const { return mount_z_m_ + s_m_; }
   double channel_pressure_Pa(int channel) const;  // true gauge pressure, paper channel 1..6
+  /// Where the tip at the current mount (x, y) first touches the phantom: the contact gap's
+  /// zero (apex_z_m), the touched point and the surface normal there (touches = false: free
+  /// air). The contact law and the channels are taken at the mount's (x, y), not the point.
+  SphereTouch site_touch() const;
   double force_constant_N_per_A() const { return kf_.at(s_m_); }
   bool at_rear_stop() const;
   bool at_front_stop() const;
@@ -87,6 +96,7 @@ class Plant {
 
  private:
   void refresh_site();
+  void ensure_touch();
   double depth_now() const;
   void update_contact(double dt_s, double mount_rate_m_per_s);
 
@@ -102,7 +112,10 @@ class Plant {
 
   // mount and the contact site under it
   double mount_x_m_ = 0.0, mount_y_m_ = 0.0, mount_z_m_ = 0.0;
-  double surface_z_m_ = 0.0;        // z_s under the mount (+inf: nothing)
+  double surface_z_m_ = 0.0;        // contact zero: z_touch, or z_s under the apex while far
+  double apex_surface_z_m_ = 0.0;   // z_s under the apex (+inf: nothing)
+  SphereTouch touch_{};             // valid when touch_valid_
+  bool touch_valid_ = false;
   double gap_offset_prev_m_ = 0.0;  // mount_z - z_s at the end of the previous step
   bool site_dirty_ = true;
   ContactParams params_{};
