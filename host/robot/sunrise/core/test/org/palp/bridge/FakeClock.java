@@ -1,0 +1,11 @@
+package org.palp.bridge;
+
+/** A clock the test advances by hand. */
+final class FakeClock implements Clock {
+  long now = 1000;
+
+  @Override
+  public long millis() {
+    return now;
+  }
+}
