@@ -63,6 +63,7 @@ struct RobotStatus {
   proto::rb::Result ack_result = proto::rb::Result::none;
   proto::rb::Result result = proto::rb::Result::none;  ///< how done_seq finished
   std::uint16_t guard_fired = 0;        ///< proto::rb::GuardSource bits of done_seq's approach
+  std::uint16_t stop_seen = 0;          ///< the last stop_request value the bridge acted on
   int tool = 0;                         ///< active tool id (0: flange)
   double robot_time_s = 0.0;            ///< the bridge's clock
   Pose pose;                            ///< actual TCP
