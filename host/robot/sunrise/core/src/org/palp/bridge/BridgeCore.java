@@ -73,7 +73,7 @@ public final class BridgeCore implements ModbusTcpServer.Listener {
       heartbeatChangedAtMs = now;
     }
     final int watchdogMs = control[HostControl.WATCHDOG_MS - HostControl.ADDRESS];
-    final boolean stale = now - heartbeatChangedAtMs >= watchdogMs;
+    final boolean stale = now - heartbeatChangedAtMs > watchdogMs;  // as palp-sim's emulator
     // a motion that ended before the bridge sees a stop keeps its own result (rule 8)
     pollArm();
 

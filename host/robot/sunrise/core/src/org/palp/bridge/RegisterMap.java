@@ -1,6 +1,6 @@
 // GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by
-// protocol/tools/palp-rb-java.cpp. Do not edit: change map.hpp, then run
-//   build/release-with-assertions/protocol/palp-rb-java --write host/robot/sunrise/core/src/org/palp/bridge/RegisterMap.java
+// protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run
+//   build/release-with-assertions/protocol/palp-rb-constants java --write host/robot/sunrise/core/src/org/palp/bridge/RegisterMap.java
 // The test `sunrise_register_map_generated` fails while this file differs from the map.
 package org.palp.bridge;
 

@@ -192,7 +192,7 @@ public class BridgeCoreTest {
   @Test
   public void staleHeartbeatRejectsMotionsButNotHoldOrSetTool() {
     cycle();  // the cycle sees the heartbeat change: the watchdog counts from here
-    clock.now += 500;
+    clock.now += 501;
     send(lin(1));
     Status s = cycle();
     assertEquals("ack 1 rejected_heartbeat_stale 0, done 0 none guards 0, idle", outcome(s));
@@ -210,10 +210,10 @@ public class BridgeCoreTest {
   }
 
   @Test
-  public void watchdogStopsAMotionWhenTheHeartbeatIsStaleForWatchdogMs() {
+  public void watchdogStopsAMotionWhenTheHeartbeatIsUnchangedForLongerThanWatchdogMs() {
     send(lin(1));
     cycle();
-    clock.now += 499;
+    clock.now += 500;
     assertEquals("ack 1 accepted 0, done 0 none guards 0, moving", outcome(cycle()));
     assertEquals(0, arm.stops);
     arm.pose = new Pose(1, 2, 3, 4, 5, 6);
@@ -238,7 +238,7 @@ public class BridgeCoreTest {
     write(HostControl.WATCHDOG_MS, 2000);
     send(lin(1));
     cycle();
-    clock.now += 1999;
+    clock.now += 2000;
     cycle();
     assertEquals(0, arm.stops);
     clock.now += 1;

@@ -1,7 +1,8 @@
-// palp-rb-java: generates the Java register constants of the robot bridge (RegisterMap.java, for
-// the Sunrise bridge in host/robot/sunrise) from the one definition of the map,
-// robot_bridge/map.hpp, through the same X-macro expansion the C++ codec uses. The Java file is
-// checked in; a ctest test runs `--check` so that it never drifts from map.hpp.
+// palp-rb-constants: generates the robot bridge's register constants for the languages outside the
+// C++ build from the one definition of the map, robot_bridge/map.hpp, through the same X-macro
+// expansion the C++ codec uses: RegisterMap.java (the Sunrise bridge, host/robot/sunrise) and
+// palp_rb_map.py (the commissioning tool beside it). Both files are checked in; ctest runs
+// `--check` on each so that they never drift from map.hpp.
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -15,18 +16,22 @@ namespace {
 
 using namespace palp::proto::rb;
 
-constexpr const char* kUsage = R"(palp-rb-java: the robot bridge's Java register constants
+constexpr const char* kUsage = R"(palp-rb-constants: the robot bridge's register constants for Java and Python
 
-usage: palp-rb-java print            write RegisterMap.java to standard output
-       palp-rb-java --check FILE     exit 1 (naming the first difference) if FILE differs
-       palp-rb-java --write FILE     rewrite FILE
+usage: palp-rb-constants LANG print           write the file to standard output
+       palp-rb-constants LANG --check FILE    exit 1 (naming the first difference) if FILE differs
+       palp-rb-constants LANG --write FILE    rewrite FILE
+LANG:  java (RegisterMap.java) or python (palp_rb_map.py)
 
 exit codes: 0 success, 1 check failed, 2 usage error, 3 file error.
 )";
 
-constexpr const char* kRegenerate =
-    "build/release-with-assertions/protocol/palp-rb-java --write "
-    "host/robot/sunrise/core/src/org/palp/bridge/RegisterMap.java";
+constexpr const char* kJavaFile = "host/robot/sunrise/core/src/org/palp/bridge/RegisterMap.java";
+constexpr const char* kPythonFile = "host/robot/sunrise/tools/palp_rb_map.py";
+
+std::string regenerate(const char* lang, const char* file) {
+  return std::string("build/release-with-assertions/protocol/palp-rb-constants ") + lang + " --write " + file;
+}
 
 std::string upper(const char* s) {
   std::string out;
@@ -114,12 +119,12 @@ void put_block(std::ostringstream& o) {
   o << "      }\n    }\n  }\n";
 }
 
-std::string generate() {
+std::string generate_java() {
   std::ostringstream o;
   o << "// GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
-       "// protocol/tools/palp-rb-java.cpp. Do not edit: change map.hpp, then run\n"
+       "// protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run\n"
        "//   "
-    << kRegenerate
+    << regenerate("java", kJavaFile)
     << "\n"
        "// The test `sunrise_register_map_generated` fails while this file differs from the map.\n"
        "package org.palp.bridge;\n\n"
@@ -156,6 +161,70 @@ std::string generate() {
   return o.str();
 }
 
+// ---- Python -----------------------------------------------------------------------------------
+template <class E>
+void put_py_enum(std::ostringstream& o, const EnumInfo<E>& info, bool bits) {
+  o << "\n\nclass " << info.name << ":\n    \"\"\"" << info.doc << "\"\"\"\n\n";
+  for (const EnumValueInfo& v : info.values) {
+    o << "    " << upper(v.name) << " = " << v.value << "\n";
+    if (bits) o << "    " << upper(v.name) << "_MASK = " << hex4(1u << v.value) << "\n";
+  }
+  o << "    NAMES = {";
+  bool first = true;
+  for (const EnumValueInfo& v : info.values) {
+    o << (first ? "" : ", ") << v.value << ": \"" << v.name << "\"";
+    first = false;
+  }
+  o << "}\n";
+}
+
+template <class B>
+void put_py_block(std::ostringstream& o) {
+  o << "\n\nclass " << B::kName << ":\n    \"\"\"" << B::kDoc << " Access " << B::kAccess << ".\"\"\"\n\n";
+  o << "    ADDRESS = " << B::kAddress << "\n    LENGTH = " << B::kLength << "\n";
+  unsigned at = B::kAddress;
+  for (const RegisterInfo& r : B::kRegisters) {
+    o << "    " << upper(r.name) << " = " << at << "\n";
+    at += r.count;
+  }
+  o << "    # (name, address, type, unit): type u16, i32, u32 or an enumeration's name\n";
+  o << "    REGISTERS = [\n";
+  at = B::kAddress;
+  for (const RegisterInfo& r : B::kRegisters) {
+    o << "        (\"" << r.name << "\", " << at << ", \"" << type_name(r) << "\", \"" << r.unit << "\"),\n";
+    at += r.count;
+  }
+  o << "    ]\n";
+}
+
+std::string generate_python() {
+  std::ostringstream o;
+  o << "# GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
+       "# protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run\n"
+       "#   "
+    << regenerate("python", kPythonFile)
+    << "\n"
+       "# The test `sunrise_python_map_generated` fails while this file differs from the map.\n"
+       "\"\"\"The robot bridge's register map "
+    << kMapMajor << "." << kMapMinor
+    << " (protocol/robot-bridge.md): absolute 0-based addresses, enumerations, limits.\"\"\"\n\n"
+    << "MAP_MAJOR = " << kMapMajor << "\nMAP_MINOR = " << kMapMinor << "\nMAGIC = 0x" << std::hex << kMagic
+    << std::dec << "  # ASCII 'PALP'\nDEFAULT_PORT = " << kDefaultPort
+    << "\nMAX_READ_REGISTERS = " << kMaxReadRegisters << "\nMAX_WRITE_REGISTERS = " << kMaxWriteRegisters
+    << "\nDEFAULT_WATCHDOG_MS = " << kDefaultWatchdogMs << "\nMIN_WATCHDOG_MS = " << kMinWatchdogMs
+    << "\nMAX_WATCHDOG_MS = " << kMaxWatchdogMs << "\nMAX_LIN_SPEED_UM_PER_S = " << kMaxLinSpeedUmPerS
+    << "\nMAX_APPROACH_SPEED_UM_PER_S = " << kMaxApproachSpeedUmPerS
+    << "\nMAX_APPROACH_TRAVEL_UM = " << kMaxApproachTravelUm << "\nMAX_FORCE_THRESHOLD_MN = " << kMaxForceThresholdMN
+    << "\n";
+  for_each_enum([&](auto info) {
+    using Info = decltype(info);
+    const bool bits = std::strcmp(Info::name, "StatusBit") == 0 || std::strcmp(Info::name, "GuardSource") == 0;
+    put_py_enum(o, info, bits);
+  });
+  for_each_block([&](auto block) { put_py_block<decltype(block)>(o); });
+  return o.str();
+}
+
 bool read_file(const char* path, std::string& out) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
@@ -182,42 +251,53 @@ std::string first_difference(const std::string& file, const std::string& fresh) 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 2 && std::strcmp(argv[1], "print") == 0) {
-    std::fputs(generate().c_str(), stdout);
+  const bool java = argc >= 2 && std::strcmp(argv[1], "java") == 0;
+  const bool python = argc >= 2 && std::strcmp(argv[1], "python") == 0;
+  if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
+    std::fputs(kUsage, stdout);
     return 0;
   }
-  if (argc != 3 || (std::strcmp(argv[1], "--check") != 0 && std::strcmp(argv[1], "--write") != 0)) {
-    std::fputs(kUsage, argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) ? stdout : stderr);
+  if (!java && !python) {
+    std::fputs(kUsage, stderr);
     return 2;
   }
-  const std::string fresh = generate();
-  if (std::strcmp(argv[1], "--check") == 0) {
+  const std::string fresh = java ? generate_java() : generate_python();
+  const char* lang = argv[1];
+  if (argc == 3 && std::strcmp(argv[2], "print") == 0) {
+    std::fputs(fresh.c_str(), stdout);
+    return 0;
+  }
+  if (argc != 4 || (std::strcmp(argv[2], "--check") != 0 && std::strcmp(argv[2], "--write") != 0)) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  const char* path = argv[3];
+  if (std::strcmp(argv[2], "--check") == 0) {
     std::string file;
-    if (!read_file(argv[2], file)) {
-      std::fprintf(stderr, "palp-rb-java: cannot read %s\n", argv[2]);
+    if (!read_file(path, file)) {
+      std::fprintf(stderr, "palp-rb-constants: cannot read %s\n", path);
       return 3;
     }
     if (file != fresh) {
-      std::fprintf(stderr, "palp-rb-java: %s differs from map.hpp (%s); regenerate with `%s`\n", argv[2],
-                   first_difference(file, fresh).c_str(), kRegenerate);
+      std::fprintf(stderr, "palp-rb-constants: %s differs from map.hpp (%s); regenerate with `%s`\n", path,
+                   first_difference(file, fresh).c_str(), regenerate(lang, java ? kJavaFile : kPythonFile).c_str());
       return 1;
     }
-    std::printf("%s matches map.hpp %u.%u\n", argv[2], static_cast<unsigned>(kMapMajor),
-                static_cast<unsigned>(kMapMinor));
+    std::printf("%s matches map.hpp %u.%u\n", path, static_cast<unsigned>(kMapMajor), static_cast<unsigned>(kMapMinor));
     return 0;
   }
-  const std::string tmp = std::string(argv[2]) + ".tmp";
+  const std::string tmp = std::string(path) + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!(out << fresh) || !out.flush()) {
-      std::fprintf(stderr, "palp-rb-java: cannot write %s\n", tmp.c_str());
+      std::fprintf(stderr, "palp-rb-constants: cannot write %s\n", tmp.c_str());
       return 3;
     }
   }
-  if (std::rename(tmp.c_str(), argv[2]) != 0) {
-    std::fprintf(stderr, "palp-rb-java: cannot write %s\n", argv[2]);
+  if (std::rename(tmp.c_str(), path) != 0) {
+    std::fprintf(stderr, "palp-rb-constants: cannot write %s\n", path);
     return 3;
   }
-  std::printf("wrote %s\n", argv[2]);
+  std::printf("wrote %s\n", path);
   return 0;
 }
