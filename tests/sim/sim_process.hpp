@@ -45,6 +45,7 @@ class SimProcess {
     }
     ::close(out[1]);
     // "palp-sim listening on tcp://127.0.0.1:P (device protocol), control on tcp://127.0.0.1:C"
+    // and, with --robot-port, ", robot bridge on tcp://127.0.0.1:R"
     std::string line;
     pollfd p{out[0], POLLIN, 0};
     while (line.find('\n') == std::string::npos && ::poll(&p, 1, 5000) == 1) {
@@ -55,6 +56,9 @@ class SimProcess {
     }
     ::close(out[0]);
     banner_ = line;
+    const std::size_t robot = line.find("robot bridge on tcp://127.0.0.1:");
+    if (robot != std::string::npos)
+      robot_port_ = static_cast<std::uint16_t>(std::stoul(line.substr(robot + 32)));
     unsigned dp = 0, cp = 0;
     if (std::sscanf(line.c_str(), "palp-sim listening on tcp://127.0.0.1:%u (device protocol), "
                                   "control on tcp://127.0.0.1:%u", &dp, &cp) == 2) {
@@ -77,6 +81,10 @@ class SimProcess {
   std::uint16_t device_port() const { return device_port_; }
   /// The SDK URI of the device socket.
   std::string uri() const { return "sim://127.0.0.1:" + std::to_string(device_port_); }
+  /// The robot bridge's Modbus TCP port (0 when palp-sim runs without --robot-port).
+  std::uint16_t robot_port() const { return robot_port_; }
+  /// The SDK URI of the robot bridge.
+  std::string robot_uri() const { return "modbus://127.0.0.1:" + std::to_string(robot_port_); }
   /// Stops palp-sim now (SIGTERM) and waits for it.
   void stop() {
     if (control_ >= 0) ::close(control_);
@@ -171,6 +179,7 @@ class SimProcess {
 
   pid_t pid_ = -1;
   std::uint16_t device_port_ = 0;
+  std::uint16_t robot_port_ = 0;
   bool connect_device_ = true;
   int device_ = -1;
   int control_ = -1;

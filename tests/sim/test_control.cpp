@@ -73,5 +73,32 @@ TEST(Control, BadLinesAreRefusedWithTheCommandAndTheWord) {
   EXPECT_EQ(error_of("status now"), "status: expected no arguments");
 }
 
+TEST(Control, RobotKnobsParseToTheirValues) {
+  EXPECT_DOUBLE_EQ(parse_as<cmd::RobotReplyDelay>("robot-reply-delay 750").ms, 750.0);
+  parse_as<cmd::RobotDrop>("robot-drop");
+  parse_as<cmd::RobotFault>("robot-fault");
+  EXPECT_TRUE(parse_as<cmd::RobotFreezeHeartbeat>("robot-freeze-heartbeat on").on);
+  EXPECT_FALSE(parse_as<cmd::RobotFreezeHeartbeat>("robot-freeze-heartbeat off").on);
+  const cmd::RobotReject r = parse_as<cmd::RobotReject>("robot-reject rejected_not_ready 3");
+  EXPECT_EQ(r.result, 35);
+  EXPECT_EQ(r.count, 3u);
+}
+
+TEST(Control, BadRobotKnobsAreRefusedNamingTheWord) {
+  EXPECT_EQ(error_of("robot-reply-delay -1"), "robot-reply-delay: '-1' is not a duration in ms >= 0");
+  EXPECT_EQ(error_of("robot-freeze-heartbeat maybe"), "robot-freeze-heartbeat: 'maybe' is not on or off");
+  EXPECT_EQ(error_of("robot-reject done 1"),
+            "robot-reject: 'done' is not a rejection result (rejected_busy, rejected_not_ready, ...)");
+  EXPECT_EQ(error_of("robot-reject rejected_busy x"), "robot-reject: 'x' is not an unsigned integer");
+  EXPECT_EQ(error_of("robot-drop now"), "robot-drop: expected no arguments");
+}
+
+TEST(Control, HelpListsTheRobotKnobs) {
+  const std::string help = control_help();
+  for (const char* k : {"robot-reply-delay", "robot-drop", "robot-freeze-heartbeat", "robot-reject",
+                        "robot-fault"})
+    EXPECT_NE(help.find(k), std::string::npos) << k;
+}
+
 }  // namespace
 }  // namespace palp::sim

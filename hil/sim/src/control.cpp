@@ -1,5 +1,7 @@
 #include "palp/sim/control.hpp"
 
+#include "palp/protocol/robot_bridge/codec.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -51,7 +53,8 @@ const char* control_help() {
   return "help | status | mount <x_mm> <y_mm> <z_mm> | phantom <name>|none | seed <n> | "
          "pace realtime|fast|<factor> | drop-frames <n> | corrupt-frames <n> | "
          "announce <major>.<minor> [0x<hash>] | announce actual | reaction-latency <ms> | "
-         "hold-timeout <ms>";
+         "hold-timeout <ms> | robot-reply-delay <ms> | robot-drop | "
+         "robot-freeze-heartbeat on|off | robot-reject <result-name> <n> | robot-fault";
 }
 
 std::optional<ControlCommand> parse_control(std::string_view line, std::string& error) {
@@ -146,6 +149,30 @@ std::optional<ControlCommand> parse_control(std::string_view line, std::string& 
     double ms = 0;
     if (!nonneg_ms(ms)) return std::nullopt;
     return cmd::HoldTimeout{ms};
+  }
+  if (name == "robot-reply-delay") {
+    double ms = 0;
+    if (!nonneg_ms(ms)) return std::nullopt;
+    return cmd::RobotReplyDelay{ms};
+  }
+  if (name == "robot-drop") return arity(0, "no arguments") ? std::optional<ControlCommand>(cmd::RobotDrop{}) : std::nullopt;
+  if (name == "robot-fault") return arity(0, "no arguments") ? std::optional<ControlCommand>(cmd::RobotFault{}) : std::nullopt;
+  if (name == "robot-freeze-heartbeat") {
+    if (!arity(1, "on or off")) return std::nullopt;
+    if (w[1] == "on") return cmd::RobotFreezeHeartbeat{true};
+    if (w[1] == "off") return cmd::RobotFreezeHeartbeat{false};
+    return bad(q(w[1]) + " is not on or off");
+  }
+  if (name == "robot-reject") {
+    if (!arity(2, "<result-name> <n>")) return std::nullopt;
+    std::uint16_t value = 0;
+    bool found = false;
+    for (const auto& v : proto::rb::EnumInfo<proto::rb::Result>::values)
+      if (w[1] == v.name && v.value >= 32) value = v.value, found = true;
+    if (!found) return bad(q(w[1]) + " is not a rejection result (rejected_busy, rejected_not_ready, ...)");
+    std::uint32_t n = 0;
+    if (!unsigned_number(w[2], n)) return bad(q(w[2]) + " is not an unsigned integer");
+    return cmd::RobotReject{value, n};
   }
   error = "unknown command " + q(name) + "; try 'help'";
   return std::nullopt;

@@ -1,6 +1,7 @@
 // palp-sim: the probe controller's firmware core and the physical model in virtual time, served
 // over a loopback socket with the device protocol, plus a control channel for the simulator's
-// own knobs (hil/README.md).
+// own knobs, and with --robot-port the KUKA robot bridge (Modbus TCP) carrying the probe
+// (hil/README.md).
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -14,7 +15,9 @@
 #include "palp/plant/phantom.hpp"
 #include "palp/sim/byte_server.hpp"
 #include "palp/sim/control.hpp"
+#include "palp/sim/modbus_server.hpp"
 #include "palp/sim/plant_link.hpp"
+#include "palp/sim/robot_world.hpp"
 #include "palp/sim/simulation.hpp"
 
 namespace {
@@ -42,6 +45,12 @@ struct Options {
   double hold_timeout_ms = 1000.0;
   double reaction_latency_ms = 2.0;
   std::string serial = "SIM-0001";
+  int robot_port = -1;  // -1: the robot bridge is off
+  std::vector<double> probe_tcp_mm{0.0, 0.0, 200.0};
+  std::vector<double> phantom_frame_mm{600.0, 0.0, 300.0};
+  std::vector<double> phantom_frame_deg{0.0, 0.0, 180.0};
+  double robot_cycle_ms = 1.0;
+  double robot_input_latency_ms = 1.0;
 };
 
 double pace_factor(const std::string& pace) {
@@ -65,23 +74,47 @@ class Server {
     sim::SimulationOptions so;
     so.hold_timeout_ms = o.hold_timeout_ms;
     so.reaction_latency_ms = o.reaction_latency_ms;
-    sim_ = std::make_unique<sim::Simulation>(identity_, make_plant(o.phantom, o.seed), so);
-    mount(o.mount_mm[0], o.mount_mm[1], o.mount_mm[2]);
+    sim_ = std::make_unique<sim::Simulation>(identity_, std::make_unique<sim::ModelPlant>(o.phantom, o.seed), so);
+    if (o.robot_port >= 0) {
+      sim::RobotWorldOptions w;
+      for (int i = 0; i < 3; ++i) {
+        w.probe_tcp_mm[i] = o.probe_tcp_mm[static_cast<std::size_t>(i)];
+        w.phantom_frame_mm[i] = o.phantom_frame_mm[static_cast<std::size_t>(i)];
+        w.phantom_frame_deg[i] = o.phantom_frame_deg[static_cast<std::size_t>(i)];
+      }
+      w.bridge.cycle_ms = o.robot_cycle_ms;
+      w.bridge.seed = o.seed;
+      w.input_latency_ms = o.robot_input_latency_ms;
+      world_ = std::make_unique<sim::RobotWorld>(*sim_, w);
+      robot_ = std::make_unique<sim::ModbusServer>(o.listen, static_cast<std::uint16_t>(o.robot_port));
+      sim_->set_plant(make_plant(o.phantom, o.seed));
+      place_on_arm();
+    } else {
+      mount(o.mount_mm[0], o.mount_mm[1], o.mount_mm[2]);
+    }
   }
 
   int run() {
     t0_ = Clock::now();
-    std::printf("palp-sim listening on %s (device protocol), control on %s\n",
-                device_.address().c_str(), control_.address().c_str());
+    std::string robot;
+    if (robot_) robot = ", robot bridge on " + robot_->address();
+    std::printf("palp-sim listening on %s (device protocol), control on %s%s\n",
+                device_.address().c_str(), control_.address().c_str(), robot.c_str());
     std::fflush(stdout);
     std::uint64_t virtual_at_sync = 0;
     Clock::time_point wall_at_sync = Clock::now();
     while (g_stop == 0) {
       // stall while the host has not drained: virtual time waits, nothing is dropped
+      const bool had_robot_client = robot_client();
+      if (robot_) {
+        world_->set_wall_us(wall_us(t0_));
+        robot_->poll(*world_, wall_us(t0_));
+      }
+      const bool any_client = device_.has_client() || robot_client();
       const bool can_run =
-          device_.has_client() && device_.tx_pending() + pending_.size() < kStallBytes;
-      const auto ev = device_.poll(can_run && !sim_->holding() ? 0 : 2);
-      if (ev.connected) {
+          any_client && device_.tx_pending() + pending_.size() < kStallBytes;
+      const auto ev = device_.poll(can_run && !sim_->holding() ? 0 : (robot_client() ? 1 : 2));
+      if (ev.connected || (robot_client() && !had_robot_client && !device_.has_client())) {
         virtual_at_sync = sim_->ticks();
         wall_at_sync = Clock::now();
       }
@@ -103,7 +136,7 @@ class Server {
           }
         }
         if (chunk > 0) sim_->run(chunk, wall_us(t0_));
-      } else if (!device_.has_client()) {
+      } else if (!any_client) {
         // no host: virtual time stands still
         virtual_at_sync = sim_->ticks();
         wall_at_sync = Clock::now();
@@ -121,15 +154,29 @@ class Server {
  private:
   static constexpr std::size_t kStallBytes = 64 * 1024;
 
-  static std::unique_ptr<sim::PlantLink> make_plant(const std::string& phantom,
-                                                    std::uint64_t seed) {
-    return std::make_unique<sim::ModelPlant>(phantom, seed);
+  std::unique_ptr<sim::PlantLink> make_plant(const std::string& phantom, std::uint64_t seed) {
+    auto model = std::make_unique<sim::ModelPlant>(phantom, seed);
+    if (!world_) return model;
+    return std::make_unique<sim::ArmMountedPlant>(std::move(model), *world_, *sim_);
   }
+
+  plant::Plant& model() {
+    if (world_) return static_cast<sim::ArmMountedPlant&>(sim_->plant()).inner().model();
+    return static_cast<sim::ModelPlant&>(sim_->plant()).model();
+  }
+
+  bool robot_client() const { return robot_ && robot_->has_client(); }
 
   void mount(double x_mm, double y_mm, double z_mm) {
     mount_mm_ = {x_mm, y_mm, z_mm};
-    static_cast<sim::ModelPlant&>(sim_->plant()).model().set_mount(x_mm * 1e-3, y_mm * 1e-3,
-                                                                    z_mm * 1e-3);
+    model().set_mount(x_mm * 1e-3, y_mm * 1e-3, z_mm * 1e-3);
+  }
+
+  // with the robot on, the arm places the probe: the tip where the flange holds it now
+  void place_on_arm() {
+    double tip[3];
+    world_->tip_in_phantom(tip);
+    model().set_mount(tip[0], tip[1], tip[2]);
   }
 
   void reply(const std::string& line) {
@@ -172,10 +219,76 @@ class Server {
                   static_cast<unsigned long long>(c.frames_dropped),
                   static_cast<unsigned long long>(c.frames_corrupted),
                   static_cast<unsigned long long>(c.holds));
-    reply(buf);
+    std::string line = buf;
+    if (world_) {
+      const auto& s = world_->bridge().status();
+      const auto& rc = world_->bridge().counters();
+      const auto& mc = robot_->counters();
+      double tip[3];
+      world_->tip_in_phantom(tip);
+      char r[512];
+      std::snprintf(r, sizeof r,
+                    " robot_client=%d robot_state=%s robot_x_mm=%.3f robot_y_mm=%.3f "
+                    "robot_z_mm=%.3f robot_a_deg=%.3f robot_b_deg=%.3f robot_c_deg=%.3f "
+                    "tip_phantom_x_mm=%.3f tip_phantom_y_mm=%.3f tip_phantom_z_mm=%.3f "
+                    "robot_ack_seq=%u robot_done_seq=%u robot_result=%s robot_force_mN=%d "
+                    "robot_commands=%llu robot_rejected=%llu robot_stops=%llu robot_guards=%llu "
+                    "robot_watchdogs=%llu modbus_requests=%llu modbus_exceptions=%llu "
+                    "modbus_refused=%llu robot_reply_delay_ms=%g",
+                    robot_client() ? 1 : 0, proto::rb::enum_name(s.state), s.x_um * 1e-3,
+                    s.y_um * 1e-3, s.z_um * 1e-3, s.a_mdeg * 1e-3, s.b_mdeg * 1e-3,
+                    s.c_mdeg * 1e-3, tip[0] * 1e3, tip[1] * 1e3, tip[2] * 1e3, s.ack_seq,
+                    s.done_seq, proto::rb::enum_name(s.result), s.force_mN,
+                    static_cast<unsigned long long>(rc.commands),
+                    static_cast<unsigned long long>(rc.rejected),
+                    static_cast<unsigned long long>(rc.stops),
+                    static_cast<unsigned long long>(rc.guards),
+                    static_cast<unsigned long long>(rc.watchdogs),
+                    static_cast<unsigned long long>(mc.requests),
+                    static_cast<unsigned long long>(mc.exceptions),
+                    static_cast<unsigned long long>(mc.refused), robot_->reply_delay_ms());
+      line += r;
+    }
+    reply(line);
   }
   void apply(const sim::cmd::Mount& m) {
+    if (world_) {
+      reply("error: mount: the robot arm places the probe (palp-sim runs with --robot-port); "
+            "move the arm instead");
+      return;
+    }
     mount(m.x_mm, m.y_mm, m.z_mm);
+    reply("ok");
+  }
+  bool robot_on(const char* name) {
+    if (robot_) return true;
+    reply(std::string("error: ") + name + ": the robot bridge is off (start palp-sim with --robot-port)");
+    return false;
+  }
+  void apply(const sim::cmd::RobotReplyDelay& d) {
+    if (!robot_on("robot-reply-delay")) return;
+    robot_->set_reply_delay_ms(d.ms);
+    reply("ok");
+  }
+  void apply(const sim::cmd::RobotDrop&) {
+    if (!robot_on("robot-drop")) return;
+    const bool had = robot_->has_client();
+    robot_->drop_client(*world_);
+    reply(had ? "ok" : "ok no client");
+  }
+  void apply(const sim::cmd::RobotFreezeHeartbeat& f) {
+    if (!robot_on("robot-freeze-heartbeat")) return;
+    world_->bridge().freeze_heartbeat(f.on);
+    reply("ok");
+  }
+  void apply(const sim::cmd::RobotReject& r) {
+    if (!robot_on("robot-reject")) return;
+    world_->bridge().reject_next(static_cast<proto::rb::Result>(r.result), r.count);
+    reply("ok");
+  }
+  void apply(const sim::cmd::RobotFault&) {
+    if (!robot_on("robot-fault")) return;
+    world_->bridge().inject_fault();
     reply("ok");
   }
   void apply(const sim::cmd::Phantom& p) { rebuild_plant(p.name, seed_); }
@@ -212,7 +325,8 @@ class Server {
       sim_->set_plant(make_plant(phantom, seed));
       phantom_ = phantom;
       seed_ = seed;
-      mount(mount_mm_[0], mount_mm_[1], mount_mm_[2]);
+      if (world_) place_on_arm();
+      else mount(mount_mm_[0], mount_mm_[1], mount_mm_[2]);
       reply("ok");
     } catch (const std::exception& e) {
       reply(std::string("error: ") + e.what());
@@ -225,6 +339,8 @@ class Server {
   double pace_;
   fw::DeviceIdentity identity_;
   std::unique_ptr<sim::Simulation> sim_;
+  std::unique_ptr<sim::RobotWorld> world_;     // with --robot-port
+  std::unique_ptr<sim::ModbusServer> robot_;   // with --robot-port
   std::string phantom_ = o_.phantom;
   std::uint64_t seed_ = o_.seed;
   std::array<double, 3> mount_mm_{};
@@ -263,6 +379,29 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--serial", o.serial, "serial number the device reports")->capture_default_str();
+  app.add_option("--robot-port", o.robot_port,
+                 "serve the KUKA robot bridge (Modbus TCP) on this port (0: a free one); "
+                 "without it the robot is off and --mount-mm places the probe")
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--probe-tcp-mm", o.probe_tcp_mm,
+                 "robot: the tip apex at stroke origin in the flange frame, x y z in mm")
+      ->expected(3)
+      ->capture_default_str();
+  app.add_option("--phantom-frame-mm", o.phantom_frame_mm,
+                 "robot: the phantom frame's origin in the robot base frame, x y z in mm")
+      ->expected(3)
+      ->capture_default_str();
+  app.add_option("--phantom-frame-deg", o.phantom_frame_deg,
+                 "robot: the phantom frame's orientation in the base frame, KUKA A B C in deg")
+      ->expected(3)
+      ->capture_default_str();
+  app.add_option("--robot-cycle-ms", o.robot_cycle_ms, "robot: the bridge's cycle, virtual ms")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 20.0));
+  app.add_option("--robot-input-latency-ms", o.robot_input_latency_ms,
+                 "robot: contact-output line to digital input 1, virtual ms")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   CLI11_PARSE(app, argc, argv);
 
   std::signal(SIGINT, on_signal);

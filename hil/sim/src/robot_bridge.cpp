@@ -69,8 +69,7 @@ ModbusException RobotBridge::read(u16 address, u16 count, u16* out) const {
   return ModbusException::illegal_data_address;
 }
 
-ModbusException RobotBridge::write(u16 address, std::span<const u16> regs, bool single,
-                                   double apply_at_s) {
+ModbusException RobotBridge::check_write(u16 address, std::span<const u16> regs, bool single) const {
   const auto count = static_cast<u16>(std::min<std::size_t>(regs.size(), 0xFFFF));
   if (!single && (count < 1 || count > rb::kMaxWriteRegisters)) return ModbusException::illegal_data_value;
   if (single && count != 1) return ModbusException::illegal_data_value;
@@ -81,10 +80,17 @@ ModbusException RobotBridge::write(u16 address, std::span<const u16> regs, bool 
     const u16 wd = regs[kWatchdogAddress - address];
     if (wd < rb::kMinWatchdogMs || wd > rb::kMaxWatchdogMs) return ModbusException::illegal_data_value;
   }
-  if (control)
-    std::copy(regs.begin(), regs.end(), written_control_.begin() + (address - rb::HostControl::kAddress));
-  else
+  return ModbusException::none;
+}
+
+ModbusException RobotBridge::write(u16 address, std::span<const u16> regs, bool single,
+                                   double apply_at_s) {
+  const ModbusException e = check_write(address, regs, single);
+  if (e != ModbusException::none) return e;
+  if (address == rb::Command::kAddress)
     std::copy(regs.begin(), regs.end(), written_command_.begin());
+  else
+    std::copy(regs.begin(), regs.end(), written_control_.begin() + (address - rb::HostControl::kAddress));
   pending_.push_back({address, std::vector<u16>(regs.begin(), regs.end()), apply_at_s});
   return ModbusException::none;
 }

@@ -29,6 +29,18 @@ void Simulation::host_bytes(const std::uint8_t* data, std::size_t size, std::uin
   deliver(data, size, wall_us);
 }
 
+std::uint64_t Simulation::host_reaction(std::uint64_t wall_us) {
+  last_wall_us_ = wall_us;
+  if (hold_.active) {
+    hold_.active = false;
+    hold_.releasing = true;
+    hold_.release_tick =
+        controller_.ticks() + static_cast<std::uint64_t>(std::llround(
+                                  options_.reaction_latency_ms * 1e-3 * controller_.control_rate_Hz()));
+  }
+  return hold_.releasing ? hold_.release_tick : controller_.ticks();
+}
+
 void Simulation::deliver(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us) {
   controller_.receive(data, size, wall_us);
   collect_device_output();
@@ -48,7 +60,7 @@ std::uint32_t Simulation::run(std::uint32_t max_ticks, std::uint64_t wall_us) {
       hold_.releasing = false;
       std::vector<std::uint8_t> bytes;
       bytes.swap(hold_.pending);
-      deliver(bytes.data(), bytes.size(), wall_us);
+      if (!bytes.empty()) deliver(bytes.data(), bytes.size(), wall_us);
     }
     tick_once(wall_us);
     ++ran;
@@ -68,6 +80,7 @@ void Simulation::tick_once(std::uint64_t wall_us) {
   in.watchdog_now_us = wall_us;
   fw::TickOutputs out;
   controller_.tick(in, out);
+  contact_line_ = out.contact_line;
   plant_->step(1.0 / controller_.control_rate_Hz(), out.v_coil_V);
 }
 

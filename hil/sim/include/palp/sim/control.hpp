@@ -14,6 +14,13 @@
 //   announce actual                   back to this build's version and schema
 //   reaction-latency <ms>             virtual time from a host's reaction to its effect
 //   hold-timeout <ms>                 wall time a contact event waits for the host's reaction
+// With the robot bridge on (--robot-port):
+//   robot-reply-delay <ms>            wall time every Modbus reply is held back (0: none)
+//   robot-drop                        close the Modbus client's connection now
+//   robot-freeze-heartbeat on|off     the bridge's heartbeat register stops (or resumes) counting
+//   robot-reject <result-name> <n>    the next n commands are rejected with that Result
+//                                     (rejected_busy, rejected_not_ready, ...)
+//   robot-fault                       a robot error: the motion ends with robot_fault, faulted
 #pragma once
 
 #include <cstdint>
@@ -36,11 +43,18 @@ struct CorruptFrames { std::uint32_t every; };
 struct Announce { bool actual; std::uint8_t major, minor; std::optional<std::uint32_t> hash; };
 struct ReactionLatency { double ms; };
 struct HoldTimeout { double ms; };
+struct RobotReplyDelay { double ms; };
+struct RobotDrop {};
+struct RobotFreezeHeartbeat { bool on; };
+struct RobotReject { std::uint16_t result; std::uint32_t count; };  // a rejection Result value
+struct RobotFault {};
 }  // namespace cmd
 
 using ControlCommand = std::variant<cmd::Help, cmd::Status, cmd::Mount, cmd::Phantom, cmd::Seed,
                                     cmd::Pace, cmd::DropFrames, cmd::CorruptFrames, cmd::Announce,
-                                    cmd::ReactionLatency, cmd::HoldTimeout>;
+                                    cmd::ReactionLatency, cmd::HoldTimeout, cmd::RobotReplyDelay,
+                                    cmd::RobotDrop, cmd::RobotFreezeHeartbeat, cmd::RobotReject,
+                                    cmd::RobotFault>;
 
 /// Parses one line. On failure returns nullopt and sets error to a one-line reason that names
 /// the command and the offending word.

@@ -62,6 +62,9 @@ class RobotBridge {
   ModbusException write(std::uint16_t address, std::span<const std::uint16_t> regs, bool single) {
     return write(address, regs, single, time_s_);
   }
+  /// The exception write() would answer, without writing.
+  ModbusException check_write(std::uint16_t address, std::span<const std::uint16_t> regs,
+                              bool single) const;
   /// Whether this (valid) write asks the robot to act: it commits a new command seq or changes
   /// stop_request. Such a write is the host's reaction to a held contact event.
   bool is_reaction(std::uint16_t address, std::span<const std::uint16_t> regs) const;

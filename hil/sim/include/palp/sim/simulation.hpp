@@ -46,6 +46,12 @@ class Simulation {
   /// event is held they wait and are delivered after the reaction latency.
   void host_bytes(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us);
 
+  /// A host reaction that does not come as device bytes (a robot-bridge write that commits a
+  /// command or a stop): it releases a held event as host bytes do. Returns the tick at which
+  /// it takes effect: reaction_latency after the release when an event was held (or is being
+  /// released), else the current tick.
+  std::uint64_t host_reaction(std::uint64_t wall_us);
+
   /// Runs up to max_ticks control ticks unless held; returns how many ran. The caller stops
   /// calling (stalls) while the host has not drained the device bytes.
   std::uint32_t run(std::uint32_t max_ticks, std::uint64_t wall_us);
@@ -57,6 +63,8 @@ class Simulation {
   std::uint64_t ticks() const { return controller_.ticks(); }
   double virtual_s() const;
   bool holding() const { return hold_.active; }
+  /// The controller's contact-output line as of the last tick (to the robot's digital input).
+  bool contact_line() const { return contact_line_; }
 
   SimulationOptions& options() { return options_; }
   fw::Controller& controller() { return controller_; }
@@ -78,6 +86,7 @@ class Simulation {
   std::unique_ptr<PlantLink> plant_;
   SimulationOptions options_;
   std::uint64_t last_wall_us_ = 0;
+  bool contact_line_ = false;
   std::vector<std::uint8_t> frame_;    // device bytes of the frame being cut out
   std::vector<std::uint8_t> out_;      // device bytes ready for the host
   struct Hold {

@@ -1,0 +1,96 @@
+#include "palp/sim/robot_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace palp::sim {
+
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+plant::Transform phantom_frame_of(const RobotWorldOptions& o) {
+  return plant::pose_from_xyzabc(o.phantom_frame_mm[0] * 1e-3, o.phantom_frame_mm[1] * 1e-3,
+                                 o.phantom_frame_mm[2] * 1e-3, o.phantom_frame_deg[0] * kRadPerDeg,
+                                 o.phantom_frame_deg[1] * kRadPerDeg,
+                                 o.phantom_frame_deg[2] * kRadPerDeg);
+}
+
+plant::Transform probe_tcp_of(const RobotWorldOptions& o) {
+  plant::Transform t;
+  for (int i = 0; i < 3; ++i) t.t[i] = o.probe_tcp_mm[i] * 1e-3;
+  return t;
+}
+
+}  // namespace
+
+plant::Transform RobotWorld::start_flange(const RobotWorldOptions& o) {
+  const plant::Transform phantom = phantom_frame_of(o);
+  const double tip_phantom[3] = {0, 0, -o.start_above_mm * 1e-3};
+  double tip[3];
+  proto::rb::apply(phantom, tip_phantom, tip);
+  plant::Transform flange;
+  flange.r = phantom.r;
+  double offset[3];
+  proto::rb::rotate(flange.r, probe_tcp_of(o).t, offset);
+  for (int i = 0; i < 3; ++i) flange.t[i] = tip[i] - offset[i];
+  return flange;
+}
+
+RobotWorld::RobotWorld(Simulation& sim, RobotWorldOptions options)
+    : sim_(sim),
+      options_(options),
+      phantom_frame_(phantom_frame_of(options)),
+      phantom_inverse_(proto::rb::inverse(phantom_frame_)),
+      probe_tcp_(probe_tcp_of(options)),
+      arm_(start_flange(options), options.arm),
+      bridge_(arm_, options.bridge) {}
+
+void RobotWorld::tip_in_phantom(double out[3]) const {
+  const plant::Transform tip = phantom_inverse_ * arm_.flange() * probe_tcp_;
+  for (int i = 0; i < 3; ++i) out[i] = tip.t[i];
+}
+
+void RobotWorld::tick(double dt_s, plant::Plant& plant, bool contact_line) {
+  // the contact line reaches digital input 1 input_latency later (a ring of one level per tick)
+  if (line_delay_.empty()) {
+    const auto n = static_cast<std::size_t>(std::max(1.0, std::round(options_.input_latency_ms * 1e-3 / dt_s)));
+    line_delay_.assign(n, false);
+  }
+  const bool seen = line_delay_[line_at_];
+  line_delay_[line_at_] = contact_line;
+  line_at_ = (line_at_ + 1) % line_delay_.size();
+  bridge_.set_digital_inputs(seen ? 1u : 0u);
+
+  // the contact force pushes the tip along the phantom's -z
+  const double f_N = plant.contact_force_N();
+  double f[3];
+  for (int i = 0; i < 3; ++i) f[i] = -f_N * phantom_frame_.r.m[i][2];
+  bridge_.set_external_force(f, true);
+
+  bridge_.advance(dt_s, wall_us_);
+  double tip[3];
+  tip_in_phantom(tip);
+  plant.move_mount(tip[0], tip[1], tip[2]);
+}
+
+ModbusException RobotWorld::read(std::uint16_t address, std::uint16_t count, std::uint16_t* out) {
+  return bridge_.read(address, count, out);
+}
+
+ModbusException RobotWorld::write(std::uint16_t address, std::span<const std::uint16_t> regs,
+                                  bool single) {
+  const ModbusException e = bridge_.check_write(address, regs, single);
+  if (e != ModbusException::none) return e;
+  double at = bridge_.time_s();
+  if (bridge_.is_reaction(address, regs)) {
+    const std::uint64_t tick = sim_.host_reaction(wall_us_);
+    const std::uint64_t now = sim_.ticks();
+    if (tick > now)
+      at += static_cast<double>(tick - now) / sim_.controller().control_rate_Hz();
+  }
+  return bridge_.write(address, regs, single, at);
+}
+
+}  // namespace palp::sim
