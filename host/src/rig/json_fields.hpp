@@ -1,0 +1,40 @@
+// Reading the rig and plan files: one JSON object, keys checked one by one, every error one
+// line "file: key: problem" (syntax errors "file:line:column: problem").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace palp::rig_detail {
+
+class Fields {
+ public:
+  /// Parses text (ConfigError on a syntax error or a top level that is not an object) and
+  /// rejects keys outside `known`.
+  Fields(std::string_view text, std::string source, const std::vector<std::string>& known);
+  /// A nested object under key (rejecting keys outside known), named "key.sub" in errors.
+  Fields(const Fields& parent, const std::string& key, const std::vector<std::string>& known);
+
+  bool has(const std::string& key) const;
+  std::string text(const std::string& key) const;
+  /// A number within [lo, hi] (hi_open: < hi), unit for messages.
+  double number(const std::string& key, double lo, double hi, std::string_view unit) const;
+  double positive(const std::string& key, double hi, std::string_view unit) const;
+  int integer(const std::string& key, int lo, int hi) const;
+  std::vector<double> numbers(const std::string& key, std::size_t count) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+  void require(const std::vector<std::string>& keys) const;
+
+ private:
+  const nlohmann::json& at(const std::string& key) const;
+  std::string source_;
+  std::string prefix_;  // "" or "parent."
+  nlohmann::json json_;
+};
+
+/// Reads a whole file; ConfigError "file: cannot read (reason)".
+std::string read_file(const std::string& path);
+
+}  // namespace palp::rig_detail
