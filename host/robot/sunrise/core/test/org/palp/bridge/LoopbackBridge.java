@@ -5,8 +5,8 @@ import java.net.InetAddress;
 
 /**
  * The bridge core with a SimulatedArm on a loopback ephemeral port, for the test of
- * bridge_check.py. Prints "port N", cycles every 5 ms, and ends when standard input closes
- * (or after 60 s).
+ * bridge_check.py and the SDK interop test. Prints "port N", cycles every 5 ms, and ends when
+ * standard input closes (with --ignore-stdin: when killed), after 60 s at the latest.
  */
 public final class LoopbackBridge {
   private LoopbackBridge() {}
@@ -39,7 +39,7 @@ public final class LoopbackBridge {
       }
     });
     stdin.setDaemon(true);
-    stdin.start();
+    if (!(args.length > 0 && args[0].equals("--ignore-stdin"))) stdin.start();
     long end = System.nanoTime() / 1000000L + 60000L;
     while (System.nanoTime() / 1000000L < end) {
       synchronized (done) {
