@@ -41,6 +41,9 @@ public final class BridgeCore implements ModbusTcpServer.Listener {
   private int approachAxis = Axis.TOOL_Z;
   private int approachDirection = 1;
 
+  private String lastArmError;
+  private boolean armFailed;  // faulted until a reset_fault, after the arm threw
+
   /** The command being carried out (a motion or a hold), or null. */
   private Active active;
 
@@ -174,6 +177,24 @@ public final class BridgeCore implements ModbusTcpServer.Listener {
   }
 
   private void start(Command c) {
+    try {
+      startOnArm(c);
+    } catch (RuntimeException e) {
+      // the robot refused or failed to start it (a Sunrise exception): a robot error, not a crash
+      // of the bridge; the motion ends with robot_fault once the arm is stationary
+      lastArmError = String.valueOf(e.getMessage());
+      active = new Active(c);
+      active.ending = Result.ROBOT_FAULT;
+      armFailed = true;
+    }
+  }
+
+  /** The message of the last exception the arm threw when a command started, or null. */
+  public String lastArmError() {
+    return lastArmError;
+  }
+
+  private void startOnArm(Command c) {
     switch (c.code) {
       case CommandCode.MOVE_LIN:
         arm.moveLin(c.pose, c.speed);
@@ -209,6 +230,7 @@ public final class BridgeCore implements ModbusTcpServer.Listener {
         finish(c.seq, Result.DONE, 0);
         break;
       case CommandCode.RESET_FAULT:
+        armFailed = false;
         finish(c.seq, !arm.faulted() || arm.resetFault() ? Result.DONE : Result.ROBOT_FAULT, 0);
         break;
       default:
@@ -279,7 +301,7 @@ public final class BridgeCore implements ModbusTcpServer.Listener {
 
   private int state() {
     if (arm.safetyStopped()) return RobotState.SAFETY_STOP;
-    if (arm.faulted()) return RobotState.FAULTED;
+    if (arm.faulted() || (armFailed && active == null)) return RobotState.FAULTED;
     if (!arm.ready()) return RobotState.NOT_READY;
     return active != null ? RobotState.MOVING : RobotState.IDLE;
   }

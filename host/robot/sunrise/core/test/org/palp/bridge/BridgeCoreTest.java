@@ -408,6 +408,20 @@ public class BridgeCoreTest {
   }
 
   @Test
+  public void anArmThatThrowsOnStartFaultsTheBridgeUntilResetFault() {
+    arm.failNextStart = new IllegalStateException("workspace violation");
+    send(lin(1));
+    assertEquals("ack 1 accepted 0, done 1 robot_fault guards 0, faulted", outcome(cycle()));
+    assertEquals("workspace violation", core.lastArmError());
+    send(lin(2));
+    assertEquals("ack 2 rejected_faulted 0, done 1 robot_fault guards 0, faulted", outcome(cycle()));
+    send(Blocks.command(3, CommandCode.RESET_FAULT));
+    assertEquals("ack 3 accepted 0, done 3 done guards 0, idle", outcome(cycle()));
+    send(lin(4));
+    assertEquals("ack 4 accepted 0, done 3 done guards 0, moving", outcome(cycle()));
+  }
+
+  @Test
   public void forceIsReportedOnlyWhileValid() {
     arm.forceMN = 1234;
     assertEquals(1234, cycle().forceMN);

@@ -26,7 +26,14 @@ final class FakeArm implements Arm {
   boolean faultPersists;
   int stops;
 
+  RuntimeException failNextStart;
+
   private void start(String call) {
+    if (failNextStart != null) {
+      RuntimeException e = failNextStart;
+      failNextStart = null;
+      throw e;
+    }
     calls.add(call);
     moving = true;
     status = MOTION_RUNNING;

@@ -36,6 +36,7 @@ public class PalpBridgeApplication extends RoboticsAPIApplication {
   private BridgeCore core;
   private ModbusTcpServer server;
   private volatile boolean running = true;
+  private String lastArmError;
 
   @Override
   public void initialize() {
@@ -64,8 +65,20 @@ public class PalpBridgeApplication extends RoboticsAPIApplication {
     long worstMs = 0;
     long reportAt = System.nanoTime() / 1000000L + 60000L;
     long last = System.nanoTime() / 1000000L;
+    String lastError = null;
     while (running) {
-      core.cycle();
+      try {
+        core.cycle();
+      } catch (RuntimeException e) {
+        // a Robotics API call failed in the cycle: log it (once per message) and go on; the host
+        // sees no fresh status while it persists and treats the bridge as gone
+        if (!String.valueOf(e).equals(lastError)) getLogger().error("palp bridge: cycle failed: " + e);
+        lastError = String.valueOf(e);
+      }
+      if (core.lastArmError() != null && !core.lastArmError().equals(lastArmError)) {
+        lastArmError = core.lastArmError();
+        getLogger().error("palp bridge: the robot refused a motion: " + lastArmError);
+      }
       ThreadUtil.milliSleep(CYCLE_MS);
       long now = System.nanoTime() / 1000000L;
       worstMs = Math.max(worstMs, now - last);
