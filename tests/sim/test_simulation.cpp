@@ -112,6 +112,27 @@ TEST(Simulation, AContactEventHoldsVirtualTimeUntilTheHostReactsThenAppliesTheLa
   host.take(*s);
 }
 
+TEST(Simulation, ARobotWriteIsAReactionThatLandsTheLatencyAfterTheHold) {
+  auto s = make();
+  HostView host;
+  std::uint64_t wall = 0;
+  s->options().reaction_latency_ms = 5.0;
+  s->options().hold_timeout_ms = 60'000.0;
+  EXPECT_EQ(s->host_reaction(wall), s->ticks());  // nothing held: at once
+  send(*s, LoadContactWatch{0.7f, 200, 0.0f}, 1, wall);
+  send(*s, ProgramStart{}, 2, wall);
+  for (int k = 0; k < 400 && host.contacts.empty(); ++k) run(*s, host, 20, 20, wall);
+  ASSERT_TRUE(s->holding());
+  const std::uint64_t held_at = s->ticks();
+  EXPECT_TRUE(s->contact_line() == false);  // contact output disabled by default
+  // the robot client's stop write, long after in wall time: 5 ms = 100 ticks after the hold
+  EXPECT_EQ(s->host_reaction(wall + 50'000), held_at + 100);
+  EXPECT_FALSE(s->holding());
+  EXPECT_EQ(s->host_reaction(wall + 50'001), held_at + 100);  // a second one lands with it
+  EXPECT_EQ(s->run(200, wall + 50'000), 200u);
+  EXPECT_EQ(s->counters().hold_timeouts, 0u);
+}
+
 TEST(Simulation, AHostThatNeverReactsReleasesTheHoldAfterTheWallTimeout) {
   auto s = make();
   HostView host;
