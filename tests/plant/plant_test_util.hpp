@@ -79,9 +79,12 @@ struct Rig {
   CurrentLoop loop;
 };
 
-/// Place the mount so that the tip at the float position just touches the surface at (x, y).
+/// Place the mount so that the tip at the float position just touches the surface at (x, y)
+/// (the sphere's first touch: on a slope it is above z_s under the apex).
 inline void touch_at_float(Rig& rig, double x_m, double y_m) {
-  const double zs = rig.plant.phantom()->surface_z_m(x_m, y_m);
+  const double zs =
+      sphere_touch(*rig.plant.phantom(), x_m, y_m, rig.plant.config().mechanics.tip_radius_m)
+          .apex_z_m;
   rig.plant.set_mount(x_m, y_m, zs - rig.plant.config().mechanics.float_position_m);
   rig.start_at(rig.plant.config().mechanics.float_position_m, kIc);
 }
