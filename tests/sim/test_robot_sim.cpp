@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <functional>
+#include <random>
 #include <thread>
 
 #include "palp/protocol/robot_bridge/codec.hpp"
@@ -365,6 +366,61 @@ TEST(RobotSim, FaultKnobsActOnTheBridge) {
   std::uint16_t v[2];
   EXPECT_FALSE(r.read(0, 2, v));
   EXPECT_EQ(sim.control("robot-drop"), "ok no client");
+}
+
+int raw_connect(std::uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+TEST(RobotSim, APartialRequestNeitherBlocksTheSimulatorNorLosesTheRequest) {
+  SimProcess sim({"--robot-port", "0"}, false);
+  const int fd = raw_connect(sim.robot_port());
+  ASSERT_GE(fd, 0);
+  // FC3, 2 registers from 0, unit 7: the first 5 bytes now, the rest later
+  const std::uint8_t req[12] = {0x12, 0x34, 0, 0, 0, 6, 7, 3, 0, 0, 0, 2};
+  ASSERT_EQ(::write(fd, req, 5), 5);
+  const auto t0 = Clock::now();
+  EXPECT_EQ(sim.control("status").rfind("ok ", 0), 0u);  // the loop still serves
+  EXPECT_LT(Clock::now() - t0, std::chrono::milliseconds(500));
+  ASSERT_EQ(::write(fd, req + 5, 7), 7);
+  std::uint8_t rsp[64];
+  pollfd p{fd, POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 2000), 1);
+  const ssize_t n = ::read(fd, rsp, sizeof rsp);
+  ::close(fd);
+  // the same transaction and unit, 4 bytes: 'PALP'
+  const std::uint8_t expected[13] = {0x12, 0x34, 0, 0, 0, 7, 7, 3, 4, 0x50, 0x41, 0x4c, 0x50};
+  ASSERT_EQ(n, 13);
+  for (int k = 0; k < 13; ++k) EXPECT_EQ(rsp[k], expected[k]) << k;
+}
+
+TEST(RobotSim, GarbageBytesCloseTheConnectionAndTheNextClientIsServed) {
+  SimProcess sim({"--robot-port", "0"}, false);
+  std::mt19937 rng(5);
+  for (int round = 0; round < 3; ++round) {
+    const int fd = raw_connect(sim.robot_port());
+    ASSERT_GE(fd, 0);
+    std::vector<std::uint8_t> junk(4096);
+    for (auto& b : junk) b = static_cast<std::uint8_t>(rng());
+    (void)::write(fd, junk.data(), junk.size());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ::close(fd);
+  }
+  ModbusClient r(sim.robot_port());
+  ASSERT_TRUE(r.connected());
+  std::uint16_t v[2];
+  ASSERT_TRUE(r.read(0, 2, v));
+  EXPECT_EQ(v[0], 0x5041);
+  EXPECT_TRUE(sim.alive());
 }
 
 TEST(RobotSim, RobotKnobsSayTheBridgeIsOffWithoutRobotPort) {
