@@ -72,6 +72,7 @@ class RobotBridge {
   // --- the world ------------------------------------------------------------------------
   /// Digital inputs as the robot sees them now: bit k-1 is input k (1..16).
   void set_digital_inputs(std::uint16_t bits) { inputs_ = bits; }
+  std::uint16_t digital_inputs() const { return inputs_; }
   /// External force on the TCP, N, base frame (valid = false: no measurement).
   void set_external_force(const double f_base_N[3], bool valid = true);
   /// The host's connection closed (§2): a motion is stopped and ends with `watchdog`.

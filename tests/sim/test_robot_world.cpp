@@ -1,0 +1,94 @@
+// RobotWorld in process: the frames of the shared world (probe on the flange, phantom in the base
+// frame), the plant's mount following the arm, and the contact line's latency to input 1.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "palp/sim/robot_world.hpp"
+
+namespace palp::sim {
+namespace {
+
+struct World {
+  explicit World(RobotWorldOptions o = {}) {
+    fw::DeviceIdentity id;
+    id.board = "palp-sim";
+    sim = std::make_unique<Simulation>(id, std::make_unique<ModelPlant>("none", 1));
+    world = std::make_unique<RobotWorld>(*sim, o);
+    auto p = std::make_unique<ArmMountedPlant>(std::make_unique<ModelPlant>("none", 1), *world, *sim);
+    plant = &p->inner().model();
+    sim->set_plant(std::move(p));
+  }
+  void tip(double out[3]) const { world->tip_in_phantom(out); }
+  // the probe as the tool (the bare flange stands outside the 0.8 m workspace sphere)
+  void probe_tool() {
+    plant::Transform probe;
+    probe.t[2] = 0.2;
+    ASSERT_TRUE(world->arm().set_tool(probe));
+  }
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<RobotWorld> world;
+  plant::Plant* plant = nullptr;
+};
+
+TEST(RobotWorld, StartsWithTheTipFiftyMmAboveThePhantomOriginAndTheFlangeAbove) {
+  World w;
+  double t[3];
+  w.tip(t);
+  EXPECT_NEAR(t[0], 0.0, 1e-12);
+  EXPECT_NEAR(t[1], 0.0, 1e-12);
+  EXPECT_NEAR(t[2], -0.050, 1e-12);
+  const plant::Transform f = w.world->arm().flange();  // phantom origin (0.6, 0, 0.3), 50 + 200 mm up
+  EXPECT_NEAR(f.t[0], 0.6, 1e-12);
+  EXPECT_NEAR(f.t[2], 0.55, 1e-12);
+  EXPECT_NEAR(f.r.m[2][2], -1.0, 1e-12);  // the flange's z (the probe's axis) points down
+}
+
+TEST(RobotWorld, ThePlantsMountFollowsTheArm) {
+  World w;
+  w.sim->run(20, 0);
+  const double z0 = w.plant->tip_z_m();
+  w.probe_tool();
+  plant::Transform down;  // 10 mm along the tool's z: into the phantom
+  down.t[2] = 0.010;
+  ASSERT_TRUE(w.world->arm().move_lin_rel(down, 0.1));
+  w.sim->run(20000, 0);  // 1 s: the 10 mm move is over
+  EXPECT_FALSE(w.world->arm().moving());
+  double t[3];
+  w.tip(t);
+  EXPECT_NEAR(t[2], -0.040, 1e-12);
+  EXPECT_NEAR(w.plant->tip_z_m() - z0, 0.010, 1e-6);  // the coil stays parked: the tip moved 10 mm
+}
+
+TEST(RobotWorld, APhantomFrameTurnedByAMapsBaseXOntoPhantomY) {
+  RobotWorldOptions o;
+  o.phantom_frame_deg[0] = 90;  // A = 90 deg, C = 180 deg
+  World w(o);
+  w.probe_tool();
+  plant::Transform target = w.world->arm().tcp();
+  target.t[0] += 0.010;
+  ASSERT_TRUE(w.world->arm().move_lin(target, 0.1));
+  w.sim->run(20000, 0);
+  double t[3];
+  w.tip(t);
+  EXPECT_NEAR(t[0], 0.0, 1e-12);
+  EXPECT_NEAR(t[1], 0.010, 1e-12);
+  EXPECT_NEAR(t[2], -0.050, 1e-12);
+}
+
+TEST(RobotWorld, TheContactLineReachesDigitalInput1AfterTheInputLatency) {
+  World w;  // 1 ms at 50 us per tick: 20 ticks
+  int ticks = 0;
+  while (w.world->bridge().digital_inputs() == 0 && ticks < 100) {
+    w.world->tick(50e-6, *w.plant, true);
+    ++ticks;
+  }
+  EXPECT_EQ(ticks, 21);  // the 21st tick sees the level of the 1st
+  for (int k = 0; k < 20; ++k) w.world->tick(50e-6, *w.plant, false);
+  EXPECT_EQ(w.world->bridge().digital_inputs(), 1);
+  w.world->tick(50e-6, *w.plant, false);
+  EXPECT_EQ(w.world->bridge().digital_inputs(), 0);
+}
+
+}  // namespace
+}  // namespace palp::sim
