@@ -101,6 +101,22 @@ TEST(SphereTouch, PlantContactStartsAtTheSphereTouchOnASlope) {
   EXPECT_NEAR(p.site_touch().normal[0], -std::sin(10 * kDeg), 1e-6);
 }
 
+TEST(SphereTouch, SubMicrometreMovesFollowTheTangentPlaneWithin0p1Nanometre) {
+  const auto ph = load_shipped_phantom("pad_2d_steep");
+  PlantConfig cfg;
+  Plant p(cfg, ph);
+  const ProbeSite s = ph->grid_point(2, 4);
+  const double z = sphere_touch(*ph, s.x_m, s.y_m, kR).apex_z_m - cfg.mechanics.float_position_m;
+  p.set_mount(s.x_m, s.y_m, z);
+  for (const double d : {0.3e-6, -0.9e-6, 5e-6}) {  // the last one is searched afresh
+    p.move_mount(s.x_m + 0.5 * d, s.y_m + d, z);
+    p.step(0.0);
+    const SphereTouch fresh = sphere_touch(*ph, s.x_m + 0.5 * d, s.y_m + d, kR);
+    EXPECT_NEAR(p.site_touch().apex_z_m, fresh.apex_z_m, 1e-10) << d;
+    EXPECT_NEAR(p.site_touch().point_y_m, fresh.point_y_m, 1e-8) << d;
+  }
+}
+
 TEST(SphereTouch, OffThePhantomNothingTouches) {
   const auto ph = load_shipped_phantom("pad_2d");
   const SphereTouch t = sphere_touch(*ph, 0.5, 0.5, kR);

@@ -116,6 +116,11 @@ class Plant {
   double apex_surface_z_m_ = 0.0;   // z_s under the apex (+inf: nothing)
   SphereTouch touch_{};             // valid when touch_valid_
   bool touch_valid_ = false;
+  struct SearchedTouch {  // the last site searched with sphere_touch
+    bool valid = false;
+    double x_m = 0.0, y_m = 0.0;
+    SphereTouch touch{};
+  } searched_;
   double gap_offset_prev_m_ = 0.0;  // mount_z - z_s at the end of the previous step
   bool site_dirty_ = true;
   ContactParams params_{};
