@@ -168,6 +168,25 @@ TEST(Rig, JsonSyntaxErrorNamesLineAndColumn) {
                  "unexpected string literal; expected ':'");
 }
 
+TEST(Rig, EveryTruncationAndByteFlipOfTheExampleIsAConfigErrorOrAValidRig) {
+  const std::string text = doc_examples("rig").at(0);
+  int errors = 0;
+  for (std::size_t n = 0; n < text.size(); ++n) {
+    std::string cut = text.substr(0, n);
+    std::string flipped = text;
+    flipped[n] = static_cast<char>(flipped[n] ^ 0x5a);
+    for (const std::string* t : {&cut, &flipped}) {
+      try {
+        parse_rig(*t, "rig.json");
+      } catch (const ConfigError& e) {
+        ++errors;
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);  // one line
+      }
+    }
+  }
+  EXPECT_GT(errors, static_cast<int>(text.size()));  // every truncation at least
+}
+
 TEST(Plan, BadGridsGiveOneLineWithTheNestedKey) {
   auto plan_error = [](const std::string& grid) {
     return error_of([&] {
