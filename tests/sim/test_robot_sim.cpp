@@ -139,6 +139,22 @@ TEST(RobotSim, BannerNamesTheRobotPortAndTheUri) {
   EXPECT_EQ(plain.banner().find("robot"), std::string::npos);
 }
 
+TEST(RobotSim, RobotStartPlacesTheTipInTheBaseFrame) {
+  SimProcess sim({"--robot-port", "0", "--robot-start-mm", "550", "10", "320"}, false);
+  ModbusClient r(sim.robot_port());
+  ASSERT_TRUE(r.connected());
+  ASSERT_TRUE(r.beat());
+  ASSERT_TRUE(r.commit(set_tool(1, 200000)));
+  const rb::StatusBlock s = r.wait_done(1);
+  EXPECT_EQ(s.x_um, 550000);
+  EXPECT_EQ(s.y_um, 10000);
+  EXPECT_EQ(s.z_um, 320000);
+  EXPECT_NE(sim.control("status").find("tip_phantom_x_mm=-50.000 tip_phantom_y_mm=-10.000 "
+                                       "tip_phantom_z_mm=-20.000"),
+            std::string::npos)
+      << sim.control("status");
+}
+
 TEST(RobotSim, ServesOneClientAndClosesASecondAtOnce) {
   SimProcess sim({"--robot-port", "0"}, false);
   ModbusClient first(sim.robot_port());

@@ -50,6 +50,7 @@ struct Options {
   std::vector<double> phantom_frame_mm{600.0, 0.0, 300.0};
   std::vector<double> phantom_frame_deg{0.0, 0.0, 180.0};
   double robot_cycle_ms = 1.0;
+  std::vector<double> robot_start_mm;  // empty: the tip 50 mm above the phantom origin
   double robot_input_latency_ms = 1.0;
 };
 
@@ -81,6 +82,10 @@ class Server {
         w.probe_tcp_mm[i] = o.probe_tcp_mm[static_cast<std::size_t>(i)];
         w.phantom_frame_mm[i] = o.phantom_frame_mm[static_cast<std::size_t>(i)];
         w.phantom_frame_deg[i] = o.phantom_frame_deg[static_cast<std::size_t>(i)];
+      }
+      if (o.robot_start_mm.size() == 3) {
+        w.start_at_tip_mm = true;
+        for (std::size_t i = 0; i < 3; ++i) w.start_tip_mm[i] = o.robot_start_mm[i];
       }
       w.bridge.cycle_ms = o.robot_cycle_ms;
       w.bridge.seed = o.seed;
@@ -395,6 +400,10 @@ int main(int argc, char** argv) {
                  "robot: the phantom frame's orientation in the base frame, KUKA A B C in deg")
       ->expected(3)
       ->capture_default_str();
+  app.add_option("--robot-start-mm", o.robot_start_mm,
+                 "robot: start with the tip at this base-frame position, x y z in mm (default: "
+                 "50 mm above the phantom origin), the probe along the phantom's +z")
+      ->expected(3);
   app.add_option("--robot-cycle-ms", o.robot_cycle_ms, "robot: the bridge's cycle, virtual ms")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 20.0));

@@ -30,6 +30,8 @@ plant::Transform RobotWorld::start_flange(const RobotWorldOptions& o) {
   const double tip_phantom[3] = {0, 0, -o.start_above_mm * 1e-3};
   double tip[3];
   proto::rb::apply(phantom, tip_phantom, tip);
+  if (o.start_at_tip_mm)
+    for (int i = 0; i < 3; ++i) tip[i] = o.start_tip_mm[i] * 1e-3;
   plant::Transform flange;
   flange.r = phantom.r;
   double offset[3];

@@ -11,8 +11,9 @@
 //      along the phantom's -z (the bridge reports it against the approach axis, with noise).
 //
 // The probe's axis (the coil's +stroke) is the flange's +z; the phantom's +z points into the
-// specimen. The initial flange pose puts the tip start_above_mm above the phantom origin with
-// the flange's axes along the phantom frame's (the probe pointing into the specimen).
+// specimen. The initial flange pose puts the tip start_above_mm above the phantom origin (or at
+// start_tip_mm in the base frame) with the flange's axes along the phantom frame's (the probe
+// pointing into the specimen).
 //
 // As the Modbus handler it applies the host's writes at the next bridge cycle, except that a
 // write that asks the robot to act (a new command, a stop) while a contact event holds virtual
@@ -37,6 +38,8 @@ struct RobotWorldOptions {
   double phantom_frame_mm[3] = {600, 0, 300};    ///< phantom origin in the base frame
   double phantom_frame_deg[3] = {0, 0, 180};     ///< phantom frame's A, B, C in the base frame
   double start_above_mm = 50;                    ///< initial tip height above the phantom origin
+  bool start_at_tip_mm = false;                  ///< start with the tip at start_tip_mm instead
+  double start_tip_mm[3] = {0, 0, 0};            ///< initial tip position, base frame
   double input_latency_ms = 1.0;                 ///< contact line -> digital input 1, virtual
   RobotBridgeOptions bridge;
   plant::RobotArmConfig arm;
