@@ -90,5 +90,37 @@ TEST(RobotWorld, TheContactLineReachesDigitalInput1AfterTheInputLatency) {
   EXPECT_EQ(w.world->bridge().digital_inputs(), 0);
 }
 
+TEST(RobotWorld, AStopWriteIsTheReactionToAHeldContactAndLandsTheLatencyLater) {
+  World w;
+  w.sim->options().reaction_latency_ms = 2.0;
+  w.sim->options().hold_timeout_ms = 60'000.0;
+  auto send = [&](const auto& m, proto::u16 seq) {
+    std::vector<proto::u8> b(proto::kMaxWireFrame);
+    b.resize(proto::encode_message(m, seq, 0, b.data(), b.size()));
+    w.sim->host_bytes(b.data(), b.size(), 0);
+  };
+  // free air: 0.7 A pushes the coil forward, 200 um fire the watch, the event holds time
+  send(proto::LoadContactWatch{0.7f, 200, 0.0f}, 1);
+  send(proto::ProgramStart{}, 2);
+  for (int k = 0; k < 2000 && !w.sim->holding(); ++k) {
+    w.sim->run(20, 0);
+    w.sim->take_device_bytes();
+  }
+  ASSERT_TRUE(w.sim->holding());
+  const std::uint64_t held_at = w.sim->ticks();
+  const std::uint16_t beat[1] = {5};
+  ASSERT_EQ(w.world->write(200, beat, true), ModbusException::none);
+  EXPECT_TRUE(w.sim->holding());  // a heartbeat is no reaction
+  const std::uint16_t stop[1] = {1};
+  ASSERT_EQ(w.world->write(201, stop, true), ModbusException::none);
+  EXPECT_FALSE(w.sim->holding());
+  while (w.world->bridge().control().stop_request != 1 && w.sim->ticks() < held_at + 200)
+    w.sim->run(1, 0);
+  // 2 ms = 40 ticks after the event, taken by the first 1 ms cycle at or after it
+  EXPECT_GE(w.sim->ticks() - held_at, 40u);
+  EXPECT_LT(w.sim->ticks() - held_at, 61u);
+  EXPECT_EQ(w.world->bridge().status().stop_seen, 1);
+}
+
 }  // namespace
 }  // namespace palp::sim
