@@ -303,7 +303,7 @@ TEST(RobotSim, StaleHeartbeatStopsTheArmWithWatchdog) {
   ASSERT_EQ(modbus_write_register(r.ctx(), 202, wd), 1);
   ASSERT_TRUE(r.commit(set_tool(1, 200000)));
   ASSERT_EQ(r.wait_done(1).result, Result::done);
-  ASSERT_TRUE(r.commit(move_rel(2, 0, 40000, 1000)));  // 40 s at 1 mm/s
+  ASSERT_TRUE(r.commit(move_rel(2, 0, 40000, 100)));  // 400 s at 0.1 mm/s
   ASSERT_EQ(r.wait([](const rb::StatusBlock& s) { return s.state == RobotState::moving; }).ack_seq, 2);
   // no heartbeat from now on: read only
   const auto end = Clock::now() + std::chrono::seconds(3);
@@ -325,7 +325,7 @@ TEST(RobotSim, AConnectionClosingMidMotionStopsTheArm) {
     ASSERT_TRUE(r.beat());
     ASSERT_TRUE(r.commit(set_tool(1, 200000)));
     ASSERT_EQ(r.wait_done(1).result, Result::done);
-    ASSERT_TRUE(r.commit(move_rel(2, 0, 40000, 1000)));
+    ASSERT_TRUE(r.commit(move_rel(2, 0, 40000, 100)));  // 400 s
     ASSERT_EQ(r.wait([](const rb::StatusBlock& s) { return s.state == RobotState::moving; }).ack_seq, 2);
   }
   ModbusClient again(sim.robot_port());

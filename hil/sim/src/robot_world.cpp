@@ -72,9 +72,11 @@ void RobotWorld::tick(double dt_s, plant::Plant& plant, bool contact_line) {
   bridge_.set_external_force(f, true);
 
   bridge_.advance(dt_s, wall_us_);
+  if (!arm_.moving() && placed_) return;  // the mount stays where the arm left it
   double tip[3];
   tip_in_phantom(tip);
   plant.move_mount(tip[0], tip[1], tip[2]);
+  placed_ = !arm_.moving();
 }
 
 ModbusException RobotWorld::read(std::uint16_t address, std::uint16_t count, std::uint16_t* out) {

@@ -79,6 +79,7 @@ class RobotWorld final : public ModbusHandler {
   std::uint64_t wall_us_ = 0;
   std::vector<bool> line_delay_;  // ring of contact-line levels, one per tick
   std::size_t line_at_ = 0;
+  bool placed_ = false;  // the plant's mount is where the stationary arm holds the tip
 };
 
 /// The model plant with the arm carrying the probe: RobotWorld::tick before every plant step.
