@@ -37,7 +37,7 @@ std::set<std::string> listed_options(const std::string& help) {
 
 bool has_unit_suffix(const std::string& option) {
   if (option == "--seconds") return true;  // the issue's own name: the unit is the whole word
-  for (const char* unit : {"-A", "-s", "-Hz", "-mm", "-Pa"}) {
+  for (const char* unit : {"-A", "-s", "-Hz", "-mm", "-Pa", "-deg"}) {
     const std::string u = unit;
     if (option.size() > u.size() && option.compare(option.size() - u.size(), u.size(), u) == 0)
       return true;
@@ -50,7 +50,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
   const std::set<std::string> unitless = {
       "--help",     "--version",        "--uri",           "--json",         "--out",
       "--overwrite", "--reps",          "--no-unload",     "--cycles",       "--settle-cycles",
-      "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only"};
+      "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
+      "--rig", "--plan", "--out-dir", "--resume", "--name"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
@@ -73,6 +74,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       {{"fault"}, {}},
       {{"fault", "show"}, {}},
       {{"fault", "clear"}, {}},
+      {{"trace"}, {"--rig", "--plan", "--out-dir", "--resume"}},
+      {{"touch-off"}, {"--rig", "--p1-mm", "--p2-mm", "--p3-mm", "--abc-deg", "--contact-E-star-Pa"}},
   };
   for (const auto& [path, wanted] : must_list) {
     Path args = path;

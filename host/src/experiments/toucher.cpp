@@ -1,0 +1,195 @@
+// The guarded-approach touch (trace.hpp): search, back off, settle, slow approach, read at rest.
+#include "toucher.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include "palp/analysis/indentation.hpp"
+
+namespace palp::detail {
+
+namespace rb = proto::rb;
+using namespace std::chrono_literals;
+
+namespace {
+constexpr double kCountM = 1e-6;        // 1 encoder count = 1 µm (SPEC)
+constexpr double kSettleS = 1.2;        // the floating coil's ring-down (zeta 0.26, 16.5 rad/s)
+constexpr double kRestS = 0.05;         // the contact settles after the arm stops
+constexpr double kSearchSpeed = 10e-3;  // the coarse search, m/s
+constexpr double kBackOff = 0.5e-3;     // from the first touch before the slow approach
+constexpr double kMeasurableM = 4e-6;   // overtravel that tells a contact stiffness
+
+std::string mm(double m) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f mm", m * 1e3);
+  return b;
+}
+}  // namespace
+
+rb::Transform transform_of(const Pose& p) {
+  rb::Transform t;
+  t.r = rb::rotation_from_abc(p.a_rad, p.b_rad, p.c_rad);
+  t.t[0] = p.x_m, t.t[1] = p.y_m, t.t[2] = p.z_m;
+  return t;
+}
+
+Pose pose_of(const rb::Transform& t) {
+  Pose p;
+  p.x_m = t.t[0], p.y_m = t.t[1], p.z_m = t.t[2];
+  rb::abc_from_rotation(t.r, p.a_rad, p.b_rad, p.c_rad);
+  return p;
+}
+
+struct Toucher::Approach {
+  MotionResult motion;
+  std::optional<ContactEvent> event;
+};
+
+Toucher::Toucher(Probe& probe, Robot& robot, const Rig& rig, std::function<bool()> cancelled)
+    : probe_(probe), robot_(robot), rig_(rig), cancelled_(std::move(cancelled)) {}
+
+void Toucher::check_cancelled() const {
+  if (cancelled_ && cancelled_()) throw Cancelled{};
+}
+
+void Toucher::wait_device(double dt_s) {
+  const double until = probe_.status().t_device_s + dt_s;
+  while (probe_.status().t_device_s < until) {
+    check_cancelled();
+    std::this_thread::sleep_for(1ms);
+  }
+}
+
+double Toucher::stroke_now_m() { return probe_.status().encoder_counts * kCountM; }
+
+void Toucher::prepare() {
+  if (floating_) return;
+  robot_.set_tool(rig_.tool_id, rig_.tool_tcp);
+  Params p = probe_.params();
+  p.contact_output = proto::ContactOutputMode::active_high;
+  probe_.set_params(p);
+  // float the coil: a watch that fires as the coil leaves its rear stop keeps its current on
+  ContactWatchProgram w;
+  w.hold_current_A = static_cast<float>(rig_.watch_current_A);
+  w.threshold_counts = 1000;
+  w.timeout_s = 5.0f;
+  probe_.load(w);
+  probe_.start();
+  if (!probe_.wait_contact(10s))
+    throw TimeoutError("the coil to float off its rear stop at " + std::to_string(rig_.watch_current_A) +
+                           " A (is watch_current_A above the float current?)",
+                       10.0, std::nullopt);
+  wait_device(kSettleS);
+  floating_stroke_m_ = stroke_now_m();
+  floating_ = true;
+}
+
+void Toucher::arm() {
+  ContactWatchProgram w;
+  w.hold_current_A = static_cast<float>(rig_.watch_current_A);
+  w.threshold_counts = static_cast<std::uint32_t>(std::lround(rig_.contact_threshold_m / kCountM));
+  w.timeout_s = 0.0f;
+  probe_.load(w);
+  probe_.start();
+}
+
+Toucher::Approach Toucher::approach(double speed, double travel_m) {
+  arm();
+  GuardedApproach g;
+  g.axis = rb::Axis::tool_z;
+  g.speed_m_per_s = speed;
+  g.max_travel_m = travel_m;
+  g.guard_host_stop = true;
+  g.digital_input = rig_.contact_input;
+  const MotionHandle h = robot_.start_guarded_approach(g);
+  Approach a;
+  const auto deadline = std::chrono::steady_clock::now() + 10s +
+                        std::chrono::milliseconds(static_cast<long>(4000 * travel_m / speed));
+  for (;;) {
+    check_cancelled();
+    a.event = probe_.wait_contact(2ms);
+    if (a.event) {
+      robot_.stop();  // the host's path; the robot's own input may already have stopped it
+      break;
+    }
+    if (robot_.status().done_seq == h.seq) break;
+    if (std::chrono::steady_clock::now() > deadline)
+      throw TimeoutError("the guarded approach to end", 4 * travel_m / speed + 10, std::nullopt);
+  }
+  a.motion = robot_.wait(h, 5s);
+  if (!a.event)  // stopped by the robot's own input: the event is on its way
+    a.event = probe_.wait_contact(a.motion.result == rb::Result::guard_fired ? 500ms : 0ms);
+  return a;
+}
+
+void Toucher::back_off(double distance_m) {
+  robot_.move_lin_rel(Pose{0, 0, -distance_m, 0, 0, 0}, rig_.travel_speed_m_per_s);
+}
+
+void Toucher::release_coil() {
+  probe_.stop();
+  floating_ = false;
+}
+
+void Toucher::make_safe() {
+  try { robot_.stop(); } catch (const std::exception&) {}
+  try { release_coil(); } catch (const std::exception&) {}
+}
+
+Touch Toucher::touch(const Pose& start, double search_travel, std::optional<double> approach_speed) {
+  Touch t;
+  prepare();
+  robot_.move_lin(start, rig_.travel_speed_m_per_s);
+  const double pushed = floating_stroke_m_ - stroke_now_m();
+  if (std::abs(pushed) >= rig_.contact_threshold_m)
+    throw ConfigError("the tip already touches something at the start of the approach (the coil is " +
+                      mm(pushed) + " off its floating position): raise safe_height_mm above the specimen");
+  const double search = std::max(rig_.approach_speed_m_per_s, std::min(kSearchSpeed, rig_.travel_speed_m_per_s));
+  Approach coarse = approach(search, search_travel);
+  if (!coarse.event) {
+    t.reason = "no contact within " + mm(search_travel) + " of travel";
+    return t;
+  }
+  robot_.move_lin_rel(Pose{0, 0, -kBackOff, 0, 0, 0}, search);
+  wait_device(kSettleS);
+  const double stroke_free = stroke_now_m();
+  Approach fine = approach(approach_speed.value_or(rig_.approach_speed_m_per_s), 2 * kBackOff);
+  if (!fine.event) {
+    t.reason = "no contact within " + mm(2 * kBackOff) + " of the first touch";
+    return t;
+  }
+  wait_device(kRestS);
+  TracePoint& m = t.at_rest;
+  const RobotStatus rest = robot_.status();
+  m.tcp_at_rest = rest.pose;
+  m.stroke_at_rest_m = stroke_now_m();
+  m.guard_fired = fine.motion.guard_fired;
+  const double kv = analysis::IndentationParams{}.spring_N_per_m;
+  const double F = kv * std::max(0.0, stroke_free - m.stroke_at_rest_m);
+  m.detection_force_N = F;
+  const rb::Transform tcp = transform_of(rest.pose);
+  if (fine.motion.latched) {
+    const Pose& l = *fine.motion.latched;
+    const double d[3] = {rest.pose.x_m - l.x_m, rest.pose.y_m - l.y_m, rest.pose.z_m - l.z_m};
+    m.overtravel_m = d[0] * tcp.r.m[0][2] + d[1] * tcp.r.m[1][2] + d[2] * tcp.r.m[2][2];
+  }
+  // the contact stiffness from the approach itself: from the event (push-back = the threshold)
+  // to rest the arm moved `overtravel` and the coil gave way by c; the rest, d, went into the
+  // specimen while the force rose from F1 to F. Hertz, delta = a F^(2/3), gives a from that pair
+  // and k_c = dF/d(delta) = 1.5 F / delta at F. Too little overtravel to tell: none.
+  const double c = fine.event->encoder_counts * kCountM - m.stroke_at_rest_m;
+  const double d = m.overtravel_m - c;
+  const double F1 = kv * std::max(0.0, stroke_free - fine.event->encoder_counts * kCountM);
+  const double span = std::pow(F, 2.0 / 3.0) - std::pow(F1, 2.0 / 3.0);
+  if (F > 0 && d >= kMeasurableM && span > 0) {
+    const double delta = d / span * std::pow(F, 2.0 / 3.0);
+    m.contact_stiffness_N_per_m = 1.5 * F / delta;
+  }
+  m.ok = t.ok = true;
+  return t;
+}
+
+}  // namespace palp::detail

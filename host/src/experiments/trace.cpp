@@ -1,0 +1,170 @@
+// trace_surface and touch_off: the guarded-approach sequence of trace.hpp over a grid.
+#include "palp/trace.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "palp/analysis/surface.hpp"
+#include "toucher.hpp"
+
+namespace palp {
+
+namespace {
+
+namespace rb = proto::rb;
+using detail::Toucher;
+
+constexpr double kFullStrokeM = 34e-3;  // the probe's whole stroke: the tip never reaches beyond
+
+class Tracer {
+ public:
+  Tracer(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const TraceOptions& o)
+      : rig_(rig), plan_(plan), o_(o), robot_(robot), toucher_(probe, robot, rig, o.cancelled) {
+    if (!rig.work_object)
+      throw ConfigError("the rig has no registered work object: run `palpctl touch-off` first");
+    if (!plan.work_object.empty() && plan.work_object != rig.work_object->name)
+      throw ConfigError("the plan is in work object '" + plan.work_object + "' but the rig's is '" +
+                        rig.work_object->name + "': touch off '" + plan.work_object + "' first");
+    wo_ = detail::transform_of(rig.work_object->pose);
+    wo_inv_ = rb::inverse(wo_);
+  }
+
+  TracedSurface run() {
+    TracedSurface s = o_.resume ? *o_.resume : TracedSurface{};
+    const std::size_t total = static_cast<std::size_t>(plan_.grid.rows) * static_cast<std::size_t>(plan_.grid.columns);
+    if (o_.resume && (s.rows != plan_.grid.rows || s.columns != plan_.grid.columns || s.points.size() > total ||
+                      s.resume_index != s.points.size()))
+      throw ConfigError("the trace to resume does not belong to this plan (" + std::to_string(s.rows) + " x " +
+                        std::to_string(s.columns) + " grid, " + std::to_string(s.points.size()) +
+                        " points kept; the plan is " + std::to_string(plan_.grid.rows) + " x " +
+                        std::to_string(plan_.grid.columns) + ")");
+    s.plan_name = plan_.name;
+    s.rows = plan_.grid.rows;
+    s.columns = plan_.grid.columns;
+    s.work_object = rig_.work_object->pose;
+    s.tip_radius_m = rig_.tip_radius_m;
+    s.contact_E_star_Pa = plan_.contact_E_star_Pa;
+    s.complete = false;
+    s.stopped_because.clear();
+    try {
+      toucher_.check_cancelled();
+      rise_to(rig_.safe_height_m + kFullStrokeM);  // whatever the coil does, the tip is clear
+      toucher_.prepare();
+      for (std::size_t k = s.resume_index; k < total; ++k) {
+        toucher_.check_cancelled();
+        const int row = static_cast<int>(k) / s.columns + 1;
+        const int column = static_cast<int>(k) % s.columns + 1;
+        s.points.push_back(trace_point(row, column));
+        s.resume_index = k + 1;
+        rise_to(tip_clearance());
+        if (o_.progress) o_.progress(TraceProgress{s.resume_index, total, &s.points.back()});
+      }
+      toucher_.release_coil();
+      s.complete = true;
+    } catch (const Toucher::Cancelled&) {
+      s.stopped_because = "cancelled";
+      make_safe();
+    } catch (const std::exception& e) {
+      s.stopped_because = e.what();
+      make_safe();
+    }
+    finish_surface(s);
+    return s;
+  }
+
+ private:
+  /// TCP height (work-object z, negative above) that puts the floating tip at the safe height.
+  double tip_clearance() const { return rig_.safe_height_m + toucher_.floating_stroke_m(); }
+
+  Pose tcp_at(double x, double y, double z) const {
+    rb::Transform t;
+    t.r = wo_.r;
+    const double p[3] = {x, y, z};
+    rb::apply(wo_, p, t.t);
+    return detail::pose_of(t);
+  }
+
+  void to_wo(const double base[3], double out[3]) const { rb::apply(wo_inv_, base, out); }
+
+  /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0.
+  void rise_to(double clearance) {
+    const Pose now = robot_.pose();
+    const double b[3] = {now.x_m, now.y_m, now.z_m};
+    double w[3];
+    to_wo(b, w);
+    if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
+  }
+
+  void make_safe() {
+    toucher_.make_safe();
+    try {
+      rise_to(rig_.safe_height_m + kFullStrokeM);
+    } catch (const std::exception&) {
+    }
+  }
+
+  TracePoint trace_point(int row, int column) {
+    const Pose start = tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -tip_clearance());
+    Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
+    TracePoint pt = t.at_rest;
+    pt.row = row;
+    pt.column = column;
+    pt.ok = t.ok;
+    pt.reason = t.reason;
+    return pt;
+  }
+
+  const Rig& rig_;
+  const Plan& plan_;
+  const TraceOptions& o_;
+  Robot& robot_;
+  Toucher toucher_;
+  rb::Transform wo_, wo_inv_;
+};
+
+}  // namespace
+
+TracedSurface trace_surface(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
+                            const TraceOptions& options) {
+  return Tracer(probe, robot, rig, plan, options).run();
+}
+
+Pose touch_off(Probe& probe, Robot& robot, const Rig& rig, const Pose (&start)[3],
+               std::optional<double> contact_E_star_Pa, std::function<bool()> cancelled) {
+  Toucher toucher(probe, robot, rig, std::move(cancelled));
+  analysis::Vec3 apex[3];
+  analysis::Vec3 axis = analysis::Vec3::UnitZ();
+  try {
+    for (int k = 0; k < 3; ++k) {
+      const Touch t = toucher.touch(start[k], rig.max_approach_m);
+      if (!t.ok) throw ConfigError("touch-off point " + std::to_string(k + 1) + ": " + t.reason);
+      // the apex at zero force (the normal is unknown yet: the approach axis)
+      const analysis::ApproachAtRest a = detail::approach_at_rest(t.at_rest);
+      analysis::IndentationSource src;
+      src.e_star_Pa = contact_E_star_Pa;
+      src.contact_stiffness_N_per_m = t.at_rest.contact_stiffness_N_per_m;
+      apex[k] = analysis::contact_point(a, src, rig.tip_radius_m, a.approach_dir).apex_zero_force_m;
+      axis = a.approach_dir;
+      toucher.back_off(rig.safe_height_m);
+    }
+    toucher.release_coil();
+  } catch (const Toucher::Cancelled&) {
+    toucher.make_safe();
+    throw Error("touch-off cancelled; the arm is stopped and the coil current is zero");
+  } catch (...) {
+    toucher.make_safe();
+    throw;
+  }
+  // the three apexes are the three contact points shifted by the same R (axis - n) (n: the
+  // plane's normal into the specimen), so their plane is parallel to the surface: the frame's
+  // orientation is right, and its origin moves back by that shift onto the surface
+  Pose frame = analysis::register_work_object(apex[0], apex[1], apex[2], axis);
+  const analysis::Vec3 n = analysis::frame_z_axis(frame);
+  const analysis::Vec3 shift = rig.tip_radius_m * (axis - n);
+  frame.x_m -= shift.x();
+  frame.y_m -= shift.y();
+  frame.z_m -= shift.z();
+  return frame;
+}
+
+}  // namespace palp

@@ -1,0 +1,151 @@
+// Surface tracing against palp-sim's probe and robot-bridge emulator over real sockets, with the
+// model's own surface as the truth (issue 5's acceptance).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "palp/analysis/surface.hpp"
+#include "palp/plant/phantom.hpp"
+#include "palp/probe.hpp"
+#include "palp/robot.hpp"
+#include "palp/trace.hpp"
+#include "sim_process.hpp"
+
+namespace {
+
+using palp::sim::test::SimProcess;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// palp-sim's defaults: the phantom frame at (600, 0, 300) mm in the base frame, rotated by
+// C = 180 deg (phantom +z = base -z); the probe's tip at stroke origin 200 mm along the flange z.
+palp::Rig sim_rig(const SimProcess& sim) {
+  palp::Rig rig;
+  rig.robot_uri = sim.robot_uri();
+  rig.probe_uri = sim.uri();
+  rig.tool_id = 1;
+  rig.tool_tcp = palp::Pose{0, 0, 0.200, 0, 0, 0};
+  rig.safe_height_m = 12e-3;  // above the tilted plane's highest point (8.8 mm)
+  rig.approach_speed_m_per_s = 1e-3;
+  rig.travel_speed_m_per_s = 0.05;
+  rig.work_object = palp::WorkObject{"phantom", palp::Pose{0.600, 0.0, 0.300, 0, 0, 180 * kDeg}};
+  return rig;
+}
+
+// the 2D pad's probing grid: column c at x = 10 + 10 (c - 1) mm, row r at y = 5 + 10 (r - 1) mm
+palp::Plan pad_plan(int n) {
+  palp::Plan plan;
+  plan.name = "pad";
+  plan.work_object = "phantom";
+  plan.grid.rows = n;
+  plan.grid.columns = n;
+  plan.grid.x0_m = 0.010;
+  plan.grid.y0_m = 0.005;
+  plan.grid.pitch_x_m = 0.080 / (n - 1);
+  plan.grid.pitch_y_m = 0.080 / (n - 1);
+  plan.contact_E_star_Pa = 3.3e6;  // the pad material's E* (hil/plant/phantoms)
+  return plan;
+}
+
+struct Errors {
+  double max_height_um = 0, max_normal_deg = 0;
+};
+
+Errors compare_with_model(const palp::TracedSurface& s, const std::string& phantom) {
+  const auto model = palp::plant::load_shipped_phantom(phantom);
+  Errors e;
+  std::vector<palp::analysis::Vec3> truth;
+  for (const palp::TracePoint& p : s.points) {
+    EXPECT_TRUE(p.ok) << "row " << p.row << " column " << p.column << ": " << p.reason;
+    const double zs = model->surface_z_m(p.x_m, p.y_m);
+    e.max_height_um = std::max(e.max_height_um, std::abs(p.z_m - zs) * 1e6);
+    if (std::getenv("PALP_TRACE_DEBUG"))
+      std::printf("r%d c%d contact (%.4f %.4f %.4f) mm apex (%.4f %.4f %.4f) z_s %.4f err %.1f um F %.4f N ind %.1f um tilt %.2f\n",
+                  p.row, p.column, p.x_m * 1e3, p.y_m * 1e3, p.z_m * 1e3, p.apex_x_m * 1e3, p.apex_y_m * 1e3,
+                  p.apex_z_m * 1e3, zs * 1e3, (p.z_m - zs) * 1e6, p.detection_force_N, p.indentation_m * 1e6,
+                  p.tilt_rad / kDeg);
+    truth.emplace_back(p.x_m, p.y_m, zs);
+  }
+  // the same stencil on the model's heights at the traced (x, y)
+  const auto g = palp::analysis::grid_normals(truth, s.rows, s.columns, palp::analysis::Vec3::UnitZ());
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    const auto& p = s.points[k];
+    const double dot = g.normal[k].dot(palp::analysis::Vec3(p.normal[0], p.normal[1], p.normal[2]));
+    e.max_normal_deg = std::max(e.max_normal_deg, std::acos(std::min(1.0, dot)) / kDeg);
+  }
+  return e;
+}
+
+TEST(Trace, NineByNineOnA15DegreeWavyPadLandsWithin20umOfTheModelSurface) {
+  SimProcess sim({"--phantom", "pad_2d_steep", "--robot-port", "0"}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  palp::Probe probe(sim.uri());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const palp::Rig rig = sim_rig(sim);
+  const palp::TracedSurface s = palp::trace_surface(probe, *robot, rig, pad_plan(9));
+  ASSERT_TRUE(s.complete) << s.stopped_because;
+  ASSERT_EQ(s.points.size(), 81u);
+  const Errors e = compare_with_model(s, "pad_2d_steep");
+  EXPECT_LT(e.max_height_um, 20.0);
+  EXPECT_LT(e.max_normal_deg, 3.0);
+  RecordProperty("max_height_error_um", std::to_string(e.max_height_um));
+  RecordProperty("max_normal_error_deg", std::to_string(e.max_normal_deg));
+  std::printf("15-degree pad: max height error %.2f um, max normal error %.3f deg\n", e.max_height_um,
+              e.max_normal_deg);
+}
+
+TEST(Trace, OnAPlaneTilted10DegreesNormalsAreWithinHalfADegree) {
+  SimProcess sim({"--phantom", "plane_tilted_10", "--robot-port", "0"}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  palp::Probe probe(sim.uri());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const palp::TracedSurface s = palp::trace_surface(probe, *robot, sim_rig(sim), pad_plan(5));
+  ASSERT_TRUE(s.complete) << s.stopped_because;
+  const Errors e = compare_with_model(s, "plane_tilted_10");
+  EXPECT_LT(e.max_height_um, 20.0);
+  EXPECT_LT(e.max_normal_deg, 0.5);
+  for (const auto& p : s.points) EXPECT_NEAR(p.tilt_rad / kDeg, 10.0, 0.5) << p.row << "," << p.column;
+  std::printf("10-degree plane: max height error %.2f um, max normal error %.3f deg\n", e.max_height_um,
+              e.max_normal_deg);
+}
+
+TEST(Trace, CancelledMidPlanLeavesTheArmAtTheSafeHeightWithZeroCurrentAndResumesWithoutRepeats) {
+  SimProcess sim({"--phantom", "pad_2d", "--robot-port", "0"}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  palp::Probe probe(sim.uri());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const palp::Rig rig = sim_rig(sim);
+  const palp::Plan plan = pad_plan(3);
+  std::size_t done = 0;
+  palp::TraceOptions o;
+  o.progress = [&](const palp::TraceProgress& p) { done = p.done; };
+  o.cancelled = [&] { return done >= 4; };  // Ctrl-C after the fourth point
+  const palp::TracedSurface part = palp::trace_surface(probe, *robot, rig, plan, o);
+  EXPECT_FALSE(part.complete);
+  EXPECT_EQ(part.stopped_because, "cancelled");
+  EXPECT_EQ(part.resume_index, 4u);
+  EXPECT_EQ(part.points.size(), 4u);
+  // the coil current is zero and the tip is above the safe height (whatever the coil does)
+  const palp::Status st = probe.status();
+  EXPECT_EQ(st.i_cmd_A, 0.0);
+  EXPECT_EQ(robot->status().state, palp::proto::rb::RobotState::idle);
+  // the TCP (tip at stroke origin) at least safe height + the whole stroke above the datum:
+  // base z = 300 mm (the datum) + 12 mm + 34 mm
+  EXPECT_GE(robot->pose().z_m, 0.300 + rig.safe_height_m + 0.034 - 1e-6);
+
+  palp::TraceOptions again;
+  again.resume = part;
+  const palp::TracedSurface whole = palp::trace_surface(probe, *robot, rig, plan, again);
+  ASSERT_TRUE(whole.complete) << whole.stopped_because;
+  ASSERT_EQ(whole.points.size(), 9u);
+  for (std::size_t k = 0; k < 9; ++k) {  // each point once, in order; the first four kept as they were
+    EXPECT_EQ(whole.points[k].row, static_cast<int>(k) / 3 + 1);
+    EXPECT_EQ(whole.points[k].column, static_cast<int>(k) % 3 + 1);
+    if (k < 4) {
+      EXPECT_EQ(whole.points[k].apex_z_m, part.points[k].apex_z_m);
+    }
+  }
+}
+
+}  // namespace
