@@ -426,6 +426,14 @@ TEST(RobotBridge, ForceIsTheExternalForceAgainstTheApproachDirection) {
   EXPECT_EQ(r.st().status_bits & rb::bit(StatusBit::force_valid), 0);
 }
 
+TEST(RobotBridge, HalfTurnAnglesAreReportedAsPlus180000WhateverTheRoundingNoise) {
+  plant::RobotArm arm{plant::pose_from_xyzabc(0.5, 0.0, 0.4, -kPi, 0, -kPi + 1e-12)};
+  RobotBridge bridge{arm};
+  bridge.advance(1e-3, 0);
+  EXPECT_EQ(bridge.status().a_mdeg, 180000);
+  EXPECT_EQ(bridge.status().c_mdeg, 180000);
+}
+
 TEST(RobotBridge, AccessRulesAnswerTheSpecsExceptionCodes) {
   Rig r;
   rb::u16 buf[130]{};

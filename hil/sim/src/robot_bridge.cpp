@@ -390,6 +390,9 @@ void RobotBridge::pose_registers(const plant::Transform& t, rb::i32* out) const 
   out[3] = to_i32(a / kRadPerMdeg);
   out[4] = to_i32(b / kRadPerMdeg);
   out[5] = to_i32(c / kRadPerMdeg);
+  // A and C of +-180 deg are one angle: report +180000, so rounding noise never flips the sign
+  if (out[3] == -180000) out[3] = 180000;
+  if (out[5] == -180000) out[5] = 180000;
 }
 
 void RobotBridge::publish(bool stale) {
