@@ -68,6 +68,7 @@ ModbusRobot::ModbusRobot(const RobotUri& uri, const RobotOptions& options)
 }
 
 ModbusRobot::~ModbusRobot() {
+  quitting_ = true;
   {
     std::lock_guard lock(mu_);
     quit_ = true;
@@ -155,6 +156,7 @@ void ModbusRobot::reconnect(const std::string& why) {
       link_.close();
     }
     const auto now = Clock::now();
+    if (quitting_) throw RobotLinkError("robot bridge " + info_.uri + ": the Robot is being closed");
     if (now >= deadline)
       throw RobotLinkError("robot bridge " + info_.uri + " unreachable: the link failed (" + why +
                            ") and did not come back within " + seconds_text(now - start) +

@@ -4,6 +4,7 @@
 // stops is noticed even while no caller waits.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -112,6 +113,7 @@ class ModbusRobot final : public Robot {
   std::condition_variable cv_;
   std::deque<std::function<void()>> tasks_;
   bool quit_ = false;
+  std::atomic<bool> quitting_{false};  // read by a reconnect in progress, so closing never waits
   std::thread owner_;
 };
 

@@ -1,0 +1,105 @@
+// palp::Robot's link handling against palp-sim's emulator (robot-bridge.md §9): a reply delayed
+// past the response timeout makes the client reconnect and the command still runs exactly once;
+// a dropped connection is re-established transparently; a frozen bridge heartbeat is a
+// RobotLinkError until it moves again; a bridge that is gone is a RobotLinkError naming the URI.
+#include <gmock/gmock.h>
+
+#include "test_robot_sim.hpp"
+
+namespace {
+
+using namespace palp::robot_test;
+using palp::sim::test::SimProcess;
+using testing::HasSubstr;
+using testing::StartsWith;
+
+TEST(RobotLink, AReplyDelayedPastTheTimeoutReconnectsAndTheCommandRunsOnce) {
+  SimProcess sim(robot_args(), false);
+  palp::RobotOptions o = fast_options();
+  o.response_timeout = 200ms;
+  o.watchdog = 4000ms;  // heartbeats 1 s apart: the command's own write is the delayed request
+  auto robot = connect_with_probe_tool(sim, o);
+  const palp::Pose start = robot->pose();
+  ASSERT_EQ(sim.control("robot-reply-delay 400"), "ok");
+  std::thread lift([&] {
+    std::this_thread::sleep_for(700ms);
+    sim.control("robot-reply-delay 0");
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  const palp::MotionResult r = robot->move_lin_rel(palp::Pose{0.001, 0, 0, 0, 0, 0}, 0.05, 10s);
+  const auto took = std::chrono::steady_clock::now() - t0;
+  lift.join();
+  EXPECT_GE(took, 650ms) << "the link was down until the delay was lifted";
+  EXPECT_EQ(r.result, rb::Result::done);
+  EXPECT_EQ(r.seq, 2);
+  // Once: 1 mm, not 2.
+  EXPECT_POSITION_NEAR(r.final_pose, start.x_m + 0.001, start.y_m, start.z_m, 1e-6);
+  const palp::RobotStatus s = robot->status();
+  EXPECT_EQ(s.ack_seq, 2);
+  EXPECT_EQ(s.done_seq, 2);  // not a second seq for the same command
+}
+
+TEST(RobotLink, ADroppedConnectionIsReestablishedAndCommandsGoOn) {
+  SimProcess sim(robot_args(), false);
+  auto robot = connect_with_probe_tool(sim);
+  const palp::Pose start = robot->pose();
+  ASSERT_EQ(sim.control("robot-drop"), "ok");
+  EXPECT_POSITION_NEAR(robot->pose(), start.x_m, start.y_m, start.z_m, 1e-6);
+  const palp::MotionResult r = robot->move_lin_rel(palp::Pose{0, 0.001, 0, 0, 0, 0}, 0.05, 10s);
+  EXPECT_EQ(r.result, rb::Result::done);
+  EXPECT_EQ(r.seq, 2);
+  ASSERT_EQ(sim.control("robot-drop"), "ok");
+  EXPECT_EQ(robot->move_lin_rel(palp::Pose{0, -0.001, 0, 0, 0, 0}, 0.05, 10s).seq, 3);
+}
+
+TEST(RobotLink, AFrozenBridgeHeartbeatIsARobotLinkErrorUntilItMovesAgain) {
+  SimProcess sim(robot_args(), false);
+  auto robot = connect_with_probe_tool(sim);
+  ASSERT_EQ(sim.control("robot-freeze-heartbeat on"), "ok");
+  std::string error;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (error.empty() && std::chrono::steady_clock::now() - t0 < 3s) {
+    try {
+      robot->status();
+      std::this_thread::sleep_for(20ms);
+    } catch (const palp::RobotLinkError& e) {
+      error = e.what();
+    }
+  }
+  const auto took = std::chrono::steady_clock::now() - t0;
+  EXPECT_THAT(error, StartsWith("robot bridge heartbeat stopped: " + sim.robot_uri() +
+                                " has answered with heartbeat "));
+  EXPECT_GE(took, 450ms);
+  EXPECT_THROW(robot->start_move_lin_rel(palp::Pose{0.001, 0, 0, 0, 0, 0}, 0.01), palp::RobotLinkError);
+  ASSERT_EQ(sim.control("robot-freeze-heartbeat off"), "ok");
+  bool back = false;
+  const auto t1 = std::chrono::steady_clock::now();
+  while (!back && std::chrono::steady_clock::now() - t1 < 3s) {
+    try {
+      robot->status();
+      back = true;
+    } catch (const palp::RobotLinkError&) {
+      std::this_thread::sleep_for(20ms);
+    }
+  }
+  EXPECT_TRUE(back) << "the client reconnects once the heartbeat moves";
+  EXPECT_EQ(robot->move_lin_rel(palp::Pose{0.001, 0, 0, 0, 0, 0}, 0.05, 10s).result, rb::Result::done);
+}
+
+TEST(RobotLink, ABridgeThatIsGoneIsARobotLinkErrorNamingTheUriAndTheLastError) {
+  SimProcess sim(robot_args(), false);
+  palp::RobotOptions o = fast_options();
+  o.reconnect_for = 300ms;
+  auto robot = connect_with_probe_tool(sim, o);
+  sim.stop();
+  try {
+    robot->status();
+    FAIL() << "answered";
+  } catch (const palp::RobotLinkError& e) {
+    EXPECT_THAT(e.what(), StartsWith("robot bridge " + sim.robot_uri() + " unreachable: the link failed ("));
+    EXPECT_THAT(e.what(), HasSubstr("and did not come back within 0.3"));
+    EXPECT_THAT(e.what(), HasSubstr("; last error: Connection refused"));
+  }
+}
+
+}  // namespace
