@@ -9,6 +9,7 @@
 #include "palp/analysis/surface.hpp"
 #include "palp/plant/phantom.hpp"
 #include "palp/probe.hpp"
+#include "palp/protocol/robot_bridge/pose.hpp"
 #include "palp/robot.hpp"
 #include "palp/trace.hpp"
 #include "sim_process.hpp"
@@ -146,6 +147,44 @@ TEST(Trace, CancelledMidPlanLeavesTheArmAtTheSafeHeightWithZeroCurrentAndResumes
       EXPECT_EQ(whole.points[k].apex_z_m, part.points[k].apex_z_m);
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(TouchOff, ThreeTouchesOnThe10DegreePlaneRegisterItsNormalAndAnOriginOnTheSurface) {
+  SimProcess sim({"--phantom", "plane_tilted_10", "--robot-port", "0"}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  palp::Probe probe(sim.uri());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  palp::Rig rig = sim_rig(sim);
+  rig.work_object.reset();
+  // above phantom (20, 20), (80, 20), (20, 70) mm; base = (600 + x, -y, 300 - z); the floating
+  // tip is ~32 mm ahead of the TCP and the plane is 5.3 mm high at x = 20, 5.3 mm low at x = 80
+  const palp::Pose start[3] = {palp::Pose{0.620, -0.020, 0.342, 0, 0, 180 * kDeg},
+                               palp::Pose{0.680, -0.020, 0.332, 0, 0, 180 * kDeg},
+                               palp::Pose{0.620, -0.070, 0.342, 0, 0, 180 * kDeg}};
+  const palp::Pose frame = palp::touch_off(probe, *robot, rig, start, 3.3e6);
+  const palp::Pose phantom{0.600, 0.0, 0.300, 0, 0, 180 * kDeg};
+  // the origin, in the phantom frame, lies on the plane
+  const auto o = palp::analysis::base_to_frame(phantom, palp::analysis::Vec3(frame.x_m, frame.y_m, frame.z_m));
+  const auto model = palp::plant::load_shipped_phantom("plane_tilted_10");
+  EXPECT_NEAR(o.z(), model->surface_z_m(o.x(), o.y()), 10e-6);
+  EXPECT_NEAR(o.x(), 0.020, 1e-3);  // the sphere touches 0.43 mm off the apex on 10 degrees
+  EXPECT_NEAR(o.y(), 0.020, 1e-4);
+  // its z axis is the plane's normal into the specimen, (-sin 10, 0, cos 10) in the phantom frame
+  namespace rb = palp::proto::rb;
+  const rb::Rotation to_phantom = rb::transpose(rb::rotation_from_abc(0, 0, 180 * kDeg));
+  const rb::Rotation f = rb::rotation_from_abc(frame.a_rad, frame.b_rad, frame.c_rad);
+  const double z_base[3] = {f.m[0][2], f.m[1][2], f.m[2][2]};
+  double z[3];
+  rb::rotate(to_phantom, z_base, z);
+  const double n[3] = {-std::sin(10 * kDeg), 0, std::cos(10 * kDeg)};
+  const double dot = z[0] * n[0] + z[1] * n[1] + z[2] * n[2];
+  EXPECT_LT(std::acos(std::min(1.0, dot)) / kDeg, 0.5);
+  // afterwards the coil current is zero
+  EXPECT_EQ(probe.status().i_cmd_A, 0.0);
 }
 
 }  // namespace
