@@ -53,6 +53,7 @@ int trace(const Context& ctx, const TraceCli& o) {
   const bool show = !ctx.json;
   Progress progress("trace", static_cast<std::uint64_t>(plan.grid.rows * plan.grid.columns), show);
   options.progress = [&](const palp::TraceProgress& p) {
+    palp::save_trace(file, *p.surface);  // after every point: a crash loses at most the current one
     progress.update(p.done);
   };
   palp::TracedSurface s = palp::trace_surface(probe, *robot, rig, plan, options);

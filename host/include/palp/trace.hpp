@@ -84,6 +84,9 @@ struct TracedSurface {
 struct TraceProgress {
   std::size_t done = 0, total = 0;
   const TracePoint* last = nullptr;
+  /// The trace so far (its points measured; normals not yet derived): save it here to survive
+  /// a crash, and resume from it.
+  const TracedSurface* surface = nullptr;
 };
 
 struct TraceOptions {

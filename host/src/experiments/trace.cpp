@@ -57,7 +57,7 @@ class Tracer {
         s.points.push_back(trace_point(row, column));
         s.resume_index = k + 1;
         rise_to(tip_clearance());
-        if (o_.progress) o_.progress(TraceProgress{s.resume_index, total, &s.points.back()});
+        if (o_.progress) o_.progress(TraceProgress{s.resume_index, total, &s.points.back(), &s});
       }
       toucher_.release_coil();
       s.complete = true;
