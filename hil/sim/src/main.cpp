@@ -428,6 +428,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "palp-sim: warning: listening on %s, not only on loopback\n",
                    o.listen.c_str());
     pace_factor(o.pace);
+    if (o.robot_port >= 0 && app.count("--mount-mm") > 0)
+      std::fprintf(stderr, "palp-sim: warning: --mount-mm is ignored with --robot-port: the arm "
+                           "places the probe (--robot-start-mm)\n");
     sim::ByteServer device = o.unix_path.empty() ? sim::ByteServer::tcp(o.listen, o.port)
                                                  : sim::ByteServer::unix_socket(o.unix_path);
     sim::ByteServer control = sim::ByteServer::tcp(o.listen, o.control_port);
