@@ -123,13 +123,16 @@ TEST(RobotConnect, ARobotFaultEndsTheMotionWithRobotFaultErrorAndResetFaultRecov
   EXPECT_EQ(robot->status().state, rb::RobotState::idle);
 }
 
-TEST(RobotConnect, TheSdkKeepsTheHostHeartbeatAliveThroughATwoSecondMotionWithA200msWatchdog) {
+TEST(RobotConnect, TheSdkKeepsTheHostHeartbeatAliveIdleAndThroughATwoSecondMotionWithA200msWatchdog) {
   SimProcess sim(robot_args(), false);
   ASSERT_EQ(sim.control("pace 1"), "ok");  // virtual = wall time: the motion lasts ~2 s
   palp::RobotOptions o = fast_options();
   o.watchdog = 200ms;
   auto robot = connect_with_probe_tool(sim, o);
-  const palp::Pose start = robot->pose();
+  std::this_thread::sleep_for(600ms);  // idle, three watchdog periods without a call
+  palp::RobotStatus idle = robot->status();
+  EXPECT_TRUE(idle.has(rb::StatusBit::host_heartbeat_ok));
+  const palp::Pose start = idle.pose;
   const auto t0 = std::chrono::steady_clock::now();
   // 19 mm at 10 mm/s with 0.5 m/s^2 ramps: 1.92 s.
   const palp::MotionResult r = robot->move_lin_rel(palp::Pose{0.019, 0, 0, 0, 0, 0}, 0.01, 10s);
