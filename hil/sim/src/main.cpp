@@ -237,7 +237,7 @@ class Server {
       const auto& mc = robot_->counters();
       double tip[3];
       world_->tip_in_phantom(tip);
-      char r[512];
+      char r[1024];
       std::snprintf(r, sizeof r,
                     " robot_client=%d robot_state=%s robot_x_mm=%.3f robot_y_mm=%.3f "
                     "robot_z_mm=%.3f robot_a_deg=%.3f robot_b_deg=%.3f robot_c_deg=%.3f "
