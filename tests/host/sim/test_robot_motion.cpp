@@ -1,6 +1,7 @@
 // Guarded approach and stop through palp::Robot against palp-sim's emulator: the force guard
 // stops the arm on the solid_1d phantom where the tip has indented it, and a stop in the middle
-// of a motion returns the pose latched when it was taken, short of where the arm came to rest.
+// of a motion returns the pose latched when it was taken, short of where the arm came to rest;
+// hold supersedes a motion; move_ptp reaches its target.
 #include <gmock/gmock.h>
 
 #include "test_robot_sim.hpp"
@@ -63,7 +64,7 @@ TEST(RobotMotion, StopMidMotionReturnsThePoseLatchedWhenItWasTaken) {
   const palp::RobotStatus stopped = robot->stop();
   ASSERT_TRUE(stopped.latched.has_value());
   EXPECT_GT(stopped.latched->x_m, start.x_m + 0.0005);
-  EXPECT_LT(stopped.latched->x_m, start.x_m + 0.010);
+  EXPECT_LT(stopped.latched->x_m, start.x_m + 0.045);  // before the 50 mm target
   const palp::MotionResult r = robot->wait(h, 5s);
   EXPECT_EQ(r.result, rb::Result::stopped);
   ASSERT_TRUE(r.latched.has_value());
@@ -76,6 +77,38 @@ TEST(RobotMotion, StopMidMotionReturnsThePoseLatchedWhenItWasTaken) {
   const palp::RobotStatus again = robot->stop();
   EXPECT_EQ(again.done_seq, h.seq);
   EXPECT_EQ(again.result, rb::Result::stopped);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RobotMotion, HoldEndsARunningMotionAsSupersededAndHoldsThePose) {
+  SimProcess sim(robot_args(), false);
+  ASSERT_EQ(sim.control("pace 1"), "ok");  // real time, so the hold lands mid-motion
+  auto robot = connect_with_probe_tool(sim);
+  const palp::Pose start = robot->pose();
+  const palp::MotionHandle h = robot->start_move_lin_rel(palp::Pose{0.05, 0, 0, 0, 0, 0}, 0.01);
+  std::this_thread::sleep_for(200ms);
+  robot->hold();
+  const palp::MotionResult r = robot->wait(h, 5s);
+  EXPECT_EQ(r.result, rb::Result::superseded);
+  EXPECT_FALSE(r.latched.has_value());
+  EXPECT_GT(r.final_pose.x_m, start.x_m + 0.0005);
+  EXPECT_LT(r.final_pose.x_m, start.x_m + 0.045);
+  const palp::RobotStatus s = robot->status();
+  EXPECT_EQ(s.state, rb::RobotState::idle);
+  EXPECT_EQ(s.done_seq, h.seq + 1) << "the hold itself finished";
+  EXPECT_NEAR(s.pose.x_m, r.final_pose.x_m, 1e-6);
+}
+
+TEST(RobotMotion, MovePtpReachesItsTargetWithASpeedFraction) {
+  SimProcess sim(robot_args(), false);
+  auto robot = connect_with_probe_tool(sim);
+  const palp::Pose target = offset(robot->pose(), -0.010, 0.020, 0.005);
+  const palp::MotionResult r = robot->wait(robot->start_move_ptp(target, 0.25), 20s);
+  EXPECT_EQ(r.result, rb::Result::done);
+  EXPECT_POSITION_NEAR(r.final_pose, target.x_m, target.y_m, target.z_m, 1e-6);
 }
 
 }  // namespace
