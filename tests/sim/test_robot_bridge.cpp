@@ -114,6 +114,17 @@ TEST(RobotBridge, HeartbeatCountsEveryCycleAndRobotTimeIsVirtualMs) {
   EXPECT_EQ(r.st().heartbeat, hb0 + 25);
 }
 
+TEST(RobotBridge, TheCyclePeriodIsAKnob) {
+  plant::RobotArm arm{plant::pose_from_xyzabc(0.5, 0.0, 0.4, 0, 0, kPi)};
+  RobotBridgeOptions o;
+  o.cycle_ms = 2.0;
+  RobotBridge bridge{arm, o};
+  const rb::u16 hb0 = bridge.status().heartbeat;
+  for (int k = 0; k < 200; ++k) bridge.advance(50e-6, 0);  // 10 ms of 50 us ticks
+  EXPECT_EQ(bridge.status().heartbeat, hb0 + 6);  // the first tick, then 2, 4, 6, 8, 10 ms
+  EXPECT_EQ(bridge.status().robot_time_ms, 10u);  // the last snapshot's time
+}
+
 // §8.2: a guarded approach stopped by the force guard, then a stop racing a finished retreat.
 TEST(RobotBridge, TimelineOfSection8_2GivesTheExactStatusAfterEachStep) {
   Rig r;

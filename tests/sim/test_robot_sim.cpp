@@ -419,6 +419,23 @@ TEST(RobotSim, APartialRequestNeitherBlocksTheSimulatorNorLosesTheRequest) {
   for (int k = 0; k < 13; ++k) EXPECT_EQ(rsp[k], expected[k]) << k;
 }
 
+TEST(RobotSim, AnFc16ByteCountThatDoesNotMatchItsQuantityIsIllegalDataValue) {
+  SimProcess sim({"--robot-port", "0"}, false);
+  const int fd = raw_connect(sim.robot_port());
+  ASSERT_GE(fd, 0);
+  // FC16 at 200, quantity 2, byte count 3 (not 4), 3 data bytes
+  const std::uint8_t req[16] = {0, 9, 0, 0, 0, 10, 1, 0x10, 0, 200, 0, 2, 3, 0, 1, 0};
+  ASSERT_EQ(::write(fd, req, 16), 16);
+  std::uint8_t rsp[64];
+  pollfd p{fd, POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 2000), 1);
+  const ssize_t n = ::read(fd, rsp, sizeof rsp);
+  ::close(fd);
+  const std::uint8_t expected[9] = {0, 9, 0, 0, 0, 3, 1, 0x90, 0x03};
+  ASSERT_EQ(n, 9);
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(rsp[k], expected[k]) << k;
+}
+
 TEST(RobotSim, GarbageBytesCloseTheConnectionAndTheNextClientIsServed) {
   SimProcess sim({"--robot-port", "0"}, false);
   std::mt19937 rng(5);
