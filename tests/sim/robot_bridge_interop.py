@@ -13,22 +13,12 @@ import re
 import subprocess
 import sys
 import time
-import types
 
 
 def import_pymodbus_tcp():
-    # Debian's pymodbus imports its serial client from pymodbus.client, which needs pyserial
-    # and pyserial-asyncio even for TCP; stand-ins keep the TCP client importable without them.
-    try:
-        from pymodbus.client import ModbusTcpClient
-    except ModuleNotFoundError:
-        for name in ("serial", "serial_asyncio"):
-            if name not in sys.modules:
-                stub = types.ModuleType(name)
-                stub.create_serial_connection = None
-                stub.Serial = object
-                sys.modules[name] = stub
-        from pymodbus.client import ModbusTcpClient
+    # Debian's pymodbus 3.0 imports its serial client from pymodbus.client too: python3-serial
+    # and python3-serial-asyncio come with it from scripts/install-deps
+    from pymodbus.client import ModbusTcpClient
     return ModbusTcpClient
 
 
