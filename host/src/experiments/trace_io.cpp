@@ -7,6 +7,7 @@
 
 #include "palp/error.hpp"
 #include "palp/trace.hpp"
+#include "trace_json.hpp"
 
 namespace palp {
 
@@ -80,7 +81,9 @@ TracePoint point_from(const json& j, const std::string& where) {
 
 }  // namespace
 
-void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
+namespace detail {
+
+json trace_to_json(const TracedSurface& s) {
   json j = {{"format", "palp.trace/1"},
             {"plan", s.plan_name},
             {"rows", s.rows},
@@ -95,6 +98,13 @@ void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
   json pts = json::array();
   for (const TracePoint& p : s.points) pts.push_back(point_json(p));
   j["points"] = std::move(pts);
+  return j;
+}
+
+json point_to_json(const TracePoint& p) { return point_json(p); }
+TracePoint point_from_json(const json& j, const std::string& where) { return point_from(j, where); }
+
+void write_json_atomically(const std::filesystem::path& file, const json& j) {
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
@@ -108,20 +118,21 @@ void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
   if (ec) throw ConfigError(file.string() + ": cannot be replaced: " + ec.message());
 }
 
-TracedSurface load_trace(const std::filesystem::path& file) {
+json read_json_file(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw ConfigError(file.string() + ": cannot be read");
   std::stringstream ss;
   ss << in.rdbuf();
-  json j;
   try {
-    j = json::parse(ss.str());
+    return json::parse(ss.str());
   } catch (const json::parse_error& e) {
     throw ConfigError(file.string() + ": not JSON (" + e.what() + ")");
   }
-  const std::string f = file.string();
+}
+
+TracedSurface trace_from_json(const json& j, const std::string& f) {
   if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
-    throw ConfigError(f + ": not a trace file (\"format\" is not \"palp.trace/1\")");
+    throw ConfigError(f + ": not a trace (\"format\" is not \"palp.trace/1\")");
   TracedSurface s;
   s.plan_name = j.value("plan", std::string{});
   s.rows = static_cast<int>(num(j, "rows", f));
@@ -144,6 +155,19 @@ TracedSurface load_trace(const std::filesystem::path& file) {
                       " x " + std::to_string(s.columns) + " grid");
   finish_surface(s);
   return s;
+}
+
+}  // namespace detail
+
+void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
+  detail::write_json_atomically(file, detail::trace_to_json(s));
+}
+
+TracedSurface load_trace(const std::filesystem::path& file) {
+  const json j = detail::read_json_file(file);
+  if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
+    throw ConfigError(file.string() + ": not a trace file (\"format\" is not \"palp.trace/1\")");
+  return detail::trace_from_json(j, file.string());
 }
 
 }  // namespace palp
