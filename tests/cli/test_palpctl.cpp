@@ -37,7 +37,7 @@ std::set<std::string> listed_options(const std::string& help) {
 
 bool has_unit_suffix(const std::string& option) {
   if (option == "--seconds") return true;  // the issue's own name: the unit is the whole word
-  for (const char* unit : {"-A", "-s", "-Hz", "-mm", "-Pa", "-deg"}) {
+  for (const char* unit : {"-A", "-s", "-Hz", "-mm", "-Pa", "-deg", "-N"}) {
     const std::string u = unit;
     if (option.size() > u.size() && option.compare(option.size() - u.size(), u.size(), u) == 0)
       return true;
@@ -51,7 +51,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--help",     "--version",        "--uri",           "--json",         "--out",
       "--overwrite", "--reps",          "--no-unload",     "--cycles",       "--settle-cycles",
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
-      "--rig", "--plan", "--out-dir", "--resume", "--name"};
+      "--rig", "--plan", "--out-dir", "--resume", "--name",
+      "--input", "--poisson", "--unbonded"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
@@ -76,6 +77,14 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       {{"fault", "clear"}, {}},
       {{"trace"}, {"--rig", "--plan", "--out-dir", "--resume"}},
       {{"touch-off"}, {"--rig", "--p1-mm", "--p2-mm", "--p3-mm", "--abc-deg", "--contact-E-star-Pa"}},
+      {{"analyze"}, {}},
+      {{"analyze", "indentation"},
+       {"--input", "--kf-N-per-A", "--ic-A", "--kv-N-per-mm", "--tip-radius-mm", "--poisson",
+        "--bias-current-A", "--bias-force-N", "--thickness-mm", "--unbonded"}},
+      {{"analyze", "pressure"}, {"--input", "--kf-N-per-A", "--ic-A", "--kv-N-per-mm"}},
+      {{"analyze", "boyle"},
+       {"--pressure-change-Pa", "--input", "--channel-diameter-mm", "--channel-length-mm",
+        "--tube-bore-mm", "--tube-length-mm", "--ambient-Pa"}},
   };
   for (const auto& [path, wanted] : must_list) {
     Path args = path;

@@ -1,0 +1,517 @@
+// palpctl analyze: re-analyse recordings without a device.
+//   analyze indentation --input run.csv   the quasi-static analysis (palp/analysis/indentation.hpp)
+//   analyze pressure --input run.csv      each channel's pressure against force, hysteresis
+//   analyze boyle                         the enclosed-volume change from a pressure rise
+// Lab units at the command line and in the output (mm, N/mm, Pa, mm^3); the SDK is SI.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "common.hpp"
+#include "palp/analysis/indentation.hpp"
+#include "palp/analysis/pressure.hpp"
+#include "palp/error.hpp"
+#include "palp/recording.hpp"
+
+namespace palpctl {
+
+namespace {
+
+namespace an = palp::analysis;
+
+struct AnalyzeCli {
+  std::string input;
+  double kf_N_per_A = 2.918, ic_A = 0.5, kv_N_per_mm = 0.0439, tip_radius_mm = 2.5, poisson = 0.5;
+  double bias_current_A = 1.0, bias_force_N = 0.0, thickness_mm = 0.0;
+  bool unbonded = false;
+  CLI::Option* bias_force_opt = nullptr;
+  CLI::Option* thickness_opt = nullptr;
+};
+
+struct BoyleCli {
+  std::string input;
+  double pressure_change_Pa = 0.0, channel_diameter_mm = 5.0, tube_bore_mm = 1.5875,
+         tube_length_mm = 500.0, ambient_Pa = palp::analysis::kAmbientPressurePa;
+  std::vector<double> channel_length_mm;
+};
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+/// The 1-based file line of every data row (comments, blank lines and the header skipped), so an
+/// analysis problem can name the lines as the reader does.
+std::vector<std::size_t> data_row_lines(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<std::size_t> lines;
+  std::string s;
+  std::size_t n = 0;
+  bool header = false;
+  while (std::getline(in, s)) {
+    ++n;
+    if (n == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s.erase(0, 3);
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string::npos || s[first] == '#') continue;
+    if (!header) { header = true; continue; }
+    lines.push_back(n);
+  }
+  return lines;
+}
+
+an::IndentationParams params_of(const AnalyzeCli& o) {
+  an::IndentationParams p;
+  p.force_constant_N_per_A = o.kf_N_per_A;
+  p.contact_current_A = o.ic_A;
+  p.spring_N_per_m = o.kv_N_per_mm * 1e3;
+  p.tip_radius_m = o.tip_radius_mm * 1e-3;
+  p.poisson = o.poisson;
+  p.bias_current_A = o.bias_force_opt != nullptr && o.bias_force_opt->count() > 0
+                         ? o.ic_A + o.bias_force_N / o.kf_N_per_A
+                         : o.bias_current_A;
+  if (o.thickness_opt != nullptr && o.thickness_opt->count() > 0)
+    p.thickness = an::Thickness{o.thickness_mm * 1e-3,
+                                o.unbonded ? an::Bonding::unbonded : an::Bonding::bonded};
+  return p;
+}
+
+json params_json(const AnalyzeCli& o, const an::IndentationParams& p) {
+  json j = {{"input", o.input},
+            {"kf_N_per_A", p.force_constant_N_per_A},
+            {"ic_A", p.contact_current_A},
+            {"kv_N_per_mm", o.kv_N_per_mm},
+            {"tip_radius_mm", o.tip_radius_mm},
+            {"poisson", p.poisson},
+            {"bias_current_A", p.bias_current_A},
+            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)}};
+  if (p.thickness) {
+    j["thickness_mm"] = o.thickness_mm;
+    j["bonding"] = o.unbonded ? "unbonded" : "bonded";
+  } else {
+    j["thickness_mm"] = nullptr;
+    j["thickness_mm_reason"] = "no --thickness-mm: a semi-infinite half-space";
+  }
+  return j;
+}
+
+/// A recording as the analysis's curve, with the analysis's data problems as RecordingErrors
+/// naming the file and the lines (exit code 1, as the reader's own errors).
+struct Loaded {
+  palp::Recording rec;
+  an::Curve curve;
+  std::vector<std::size_t> lines;
+  std::size_t line_of(std::size_t row) const { return row < lines.size() ? lines[row] : 0; }
+};
+
+Loaded load(const std::string& file, const an::IndentationParams& p) {
+  Loaded l;
+  l.rec = palp::read_recording(file);
+  l.lines = data_row_lines(file);
+  const auto n = static_cast<Eigen::Index>(l.rec.size());
+  l.curve.z_m = Eigen::Map<const Eigen::VectorXd>(l.rec.z_mm.data(), n) * 1e-3;
+  l.curve.i_A = Eigen::Map<const Eigen::VectorXd>(l.rec.i_A.data(), n);
+  l.curve.rep = Eigen::Map<const Eigen::VectorXi>(l.rec.rep.data(), n);
+  // no contact: name the line with the highest current
+  Eigen::Index top = 0;
+  const double i_max = l.curve.i_A.maxCoeff(&top);
+  if (i_max < p.contact_current_A)
+    throw palp::RecordingError(file, l.line_of(static_cast<std::size_t>(top)),
+                               "no contact: the highest current, i_A = " + fmt(i_max) +
+                                   " A here, stays below the contact current I_c = " +
+                                   fmt(p.contact_current_A) + " A (--ic-A)");
+  // too few points in contact on the loading branches: name their lines
+  std::vector<int> contact;
+  for (int k : an::loading_branch(l.curve).loading)
+    if (l.curve.i_A[k] >= p.contact_current_A) contact.push_back(k);
+  if (static_cast<int>(contact.size()) < p.min_points) {
+    const auto a = l.line_of(static_cast<std::size_t>(contact.front()));
+    const auto b = l.line_of(static_cast<std::size_t>(contact.back()));
+    throw palp::RecordingError(
+        file, 0,
+        "too few points: " + std::to_string(contact.size()) + " loading sample" +
+            (contact.size() == 1 ? "" : "s") + " at i_A >= I_c = " + fmt(p.contact_current_A) +
+            " A (line" + (a == b ? " " + std::to_string(a) : "s " + std::to_string(a) + "-" +
+                                                                  std::to_string(b)) +
+            "), the fits need at least " + std::to_string(p.min_points));
+  }
+  return l;
+}
+
+// --- JSON helpers: a value in lab units, or null with its reason ---------------------------
+
+void put(json& j, const std::string& key, const an::Value& v, double scale) {
+  if (v) {
+    j[key] = *v.value * scale;
+  } else {
+    j[key] = nullptr;
+    j[key + "_reason"] = v.reason;
+  }
+}
+void put(json& j, const std::string& key, const std::optional<double>& v, double scale,
+         const std::string& why) {
+  put(j, key, v ? an::Value::of(*v) : an::Value::absent(why), scale);
+}
+
+/// <key>, <key>_se and <key>_sd in one go.
+void put3(json& j, const std::string& key, const an::Value& v, const an::Value& se,
+          const an::Value& sd, double scale) {
+  put(j, key, v, scale);
+  put(j, key + "_se", se, scale);
+  put(j, key + "_sd", sd, scale);
+}
+
+an::Value sd_over(const an::RepetitionSummary& reps,
+                  const std::function<std::optional<double>(const an::IndentationResult&)>& get,
+                  const std::string& what) {
+  std::vector<an::Value> v;
+  for (const auto& r : reps.per_rep) {
+    const auto x = get(r);
+    v.push_back(x ? an::Value::of(*x) : an::Value::absent(what + " absent in this repetition"));
+  }
+  return an::mean_sd(v).sd;
+}
+
+/// Delta-method standard errors through the model's scale parameter s (k or E*), which the
+/// model's force is proportional to: F = s g(delta).
+///   delta0: s g(delta0) = F_0  ->  d delta0/ds = -F_0 / (s k_t(delta0))
+///   k_t at a fixed depth = s g'(delta)  ->  se = k_t se_s / s
+///   k_t at delta0: d/ds = g'(delta0) + s g''(delta0) d delta0/ds (g'' by central difference)
+struct DerivedSe {
+  an::Value delta0, k_at_delta0;
+  std::vector<an::Value> k_at_depth;
+};
+DerivedSe derived_se(const an::IndentationResult& r, const an::ModelFit* m) {
+  DerivedSe d;
+  const std::string no_fit = "no model fitted";
+  if (m == nullptr || m->params.size() == 0 || m->se.size() == 0) {
+    d.delta0 = d.k_at_delta0 = an::Value::absent(no_fit);
+    d.k_at_depth.assign(r.k_tangent_N_per_m.size(), an::Value::absent(no_fit));
+    return d;
+  }
+  const double s = m->params[0], se_s = m->se[0];
+  for (const auto& k : r.k_tangent_N_per_m)
+    d.k_at_depth.push_back(k ? an::Value::of(std::abs(*k.value * se_s / s)) : an::Value::absent(k.reason));
+  if (!r.delta0_m) {
+    d.delta0 = d.k_at_delta0 = an::Value::absent(r.delta0_m.reason);
+    return d;
+  }
+  const double d0 = *r.delta0_m.value, kt = m->stiffness_N_per_m(d0);
+  const double dd0_ds = -r.F0_N / (s * kt);
+  const double h = std::max(1e-9, 1e-4 * d0);
+  const double g2 = (m->stiffness_N_per_m(d0 + h) - m->stiffness_N_per_m(d0 - h)) / (2 * h * s);
+  d.delta0 = an::Value::of(std::abs(dd0_ds * se_s));
+  d.k_at_delta0 = an::Value::of(std::abs((kt / s + s * g2 * dd0_ds) * se_s));
+  return d;
+}
+
+const an::ModelFit* chosen_fit(const an::IndentationResult& r) {
+  if (!r.chosen) return nullptr;
+  switch (*r.chosen) {
+    case an::Model::linear: return r.linear ? &*r.linear : nullptr;
+    case an::Model::hertz: return r.hertz ? &*r.hertz : nullptr;
+    case an::Model::sneddon: return r.sneddon ? &*r.sneddon : nullptr;
+  }
+  return nullptr;
+}
+
+const char* kSdNote = "model-free: no fit standard error (see the _sd over repetitions)";
+
+json indentation_json(const AnalyzeCli& o, const an::IndentationParams& p,
+                      const an::IndentationResult& r, const an::RepetitionSummary& reps) {
+  json j;
+  j["params"] = params_json(o, p);
+  const an::ModelFit* best = chosen_fit(r);
+  const double mm = 1e3, N_per_mm = 1e-3;
+
+  put3(j, "contact_point_mm", r.contact_z_m,
+       best ? an::Value::of(best->contact_z_se_m) : an::Value::absent(r.fit_reason),
+       reps.contact_z_m.sd, mm);
+
+  auto fit_value = [](const std::optional<an::ModelFit>& f, const std::string& why, bool se) {
+    if (!f) return an::Value::absent(why);
+    return an::Value::of(se ? f->se[0] : f->params[0]);
+  };
+  auto fit_sd = [&](an::Model m) {
+    return sd_over(reps, [m](const an::IndentationResult& x) -> std::optional<double> {
+      const auto& f = m == an::Model::linear ? x.linear : m == an::Model::hertz ? x.hertz : x.sneddon;
+      return f ? std::optional<double>(f->params[0]) : std::nullopt;
+    }, std::string(an::model_name(m)) + " fit");
+  };
+  put3(j, "k_linear_N_per_mm", fit_value(r.linear, r.linear_reason, false),
+       fit_value(r.linear, r.linear_reason, true), fit_sd(an::Model::linear), N_per_mm);
+  put(j, "r2_linear", r.linear ? std::optional<double>(r.linear->r2) : std::nullopt, 1.0, r.linear_reason);
+  const double e_of_estar = 1.0 - p.poisson * p.poisson;  // E = E* (1 - nu^2)
+  for (auto [m, name, reason] : {std::tuple{an::Model::hertz, "hertz", &r.hertz_reason},
+                                 std::tuple{an::Model::sneddon, "sneddon", &r.sneddon_reason}}) {
+    const auto& f = m == an::Model::hertz ? r.hertz : r.sneddon;
+    const an::Value sd = fit_sd(m);
+    const std::string key = std::string("E_star_") + name + "_Pa";
+    put3(j, key, fit_value(f, *reason, false), fit_value(f, *reason, true), sd, 1.0);
+    put(j, std::string("r2_") + name, f ? std::optional<double>(f->r2) : std::nullopt, 1.0, *reason);
+    const std::string ekey = std::string("E_") + name + "_Pa";
+    put3(j, ekey, fit_value(f, *reason, false), fit_value(f, *reason, true), sd, e_of_estar);
+  }
+  if (r.chosen) {
+    j["model_by_aic"] = an::model_name(*r.chosen);
+  } else {
+    j["model_by_aic"] = nullptr;
+    j["model_by_aic_reason"] = r.fit_reason;
+  }
+
+  const DerivedSe se = derived_se(r, best);
+  put3(j, "delta0_mm", r.delta0_m, se.delta0, reps.delta0_m.sd, mm);
+  put3(j, "k_tangent_N_per_mm", r.k_tangent_at_delta0_N_per_m, se.k_at_delta0,
+       reps.k_tangent_at_delta0_N_per_m.sd, N_per_mm);
+  const an::Value none = an::Value::absent(kSdNote);
+  put3(j, "k_fd_N_per_mm", r.k_fd_N_per_m, none, reps.k_fd_N_per_m.sd, N_per_mm);
+  put3(j, "k_ls_window_N_per_mm", r.k_window_N_per_m, none, reps.k_window_N_per_m.sd, N_per_mm);
+  put3(j, "k_fd_paper_N_per_mm", r.k_fd_paper_N_per_m, none, reps.k_fd_paper_N_per_m.sd, N_per_mm);
+
+  json at = json::object(), at_se = json::object(), at_sd = json::object();
+  for (std::size_t k = 0; k < r.tangent_depths_m.size(); ++k) {
+    const std::string key = fmt(r.tangent_depths_m[k] * 1e3) + "_mm";
+    put(at, key, r.k_tangent_N_per_m[k], N_per_mm);
+    put(at_se, key, se.k_at_depth[k], N_per_mm);
+    put(at_sd, key, k < reps.k_tangent_N_per_m.size() ? reps.k_tangent_N_per_m[k].sd
+                                                       : an::Value::absent("no repetitions"), N_per_mm);
+  }
+  j["k_at_depth_N_per_mm"] = at;
+  j["k_at_depth_N_per_mm_se"] = at_se;
+  j["k_at_depth_N_per_mm_sd"] = at_sd;
+  return j;
+}
+
+void print_or_json(const Context& ctx, const json& j) {
+  if (ctx.json) print_json(j);
+  else print_text(j);
+}
+
+int analyze_indentation(const Context& ctx, const AnalyzeCli& o) {
+  const an::IndentationParams p = params_of(o);
+  const Loaded l = load(o.input, p);
+  const an::IndentationResult r = an::analyze_indentation(l.curve, p);
+  const an::RepetitionSummary reps = an::analyze_repetitions(l.curve, p);
+  print_or_json(ctx, indentation_json(o, p, r, reps));
+  return kOk;
+}
+
+/// The pressure channels the recording has: (channel 1..6, its samples as a column).
+std::vector<std::pair<int, const std::vector<double>*>> pressure_channels(const Loaded& l,
+                                                                          const std::string& file) {
+  std::vector<std::pair<int, const std::vector<double>*>> out;
+  for (std::size_t ch = 0; ch < 6; ++ch)
+    if (l.rec.p_Pa[ch]) out.emplace_back(static_cast<int>(ch) + 1, &*l.rec.p_Pa[ch]);
+  if (out.empty()) throw palp::RecordingError(file, 0, "no pressure column (p1_Pa .. p6_Pa)");
+  return out;
+}
+
+int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
+  const an::IndentationParams p = params_of(o);
+  const Loaded l = load(o.input, p);
+  const auto channels = pressure_channels(l, o.input);
+  const an::IndentationResult r = an::analyze_indentation(l.curve, p);
+  if (!r.contact_z_m)
+    throw palp::RecordingError(o.input, 0, "no contact point for the object force: " + r.contact_z_m.reason);
+  Eigen::MatrixXd P(l.curve.z_m.size(), static_cast<Eigen::Index>(channels.size()));
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    P.col(static_cast<Eigen::Index>(c)) =
+        Eigen::Map<const Eigen::VectorXd>(channels[c].second->data(), P.rows());
+  const an::PressureResult pr = an::analyze_pressure(l.curve, P, p, *r.contact_z_m.value);
+  json j;
+  j["params"] = params_json(o, p);
+  j["force"] = std::string("object force F_o = K_f (i - I_c) - k_v (z - z_c), samples at i >= I_c on "
+                           "the loading branches; z_c of the ") + an::model_name(*r.chosen) + " fit";
+  j["contact_point_mm"] = pr.contact_z_m * 1e3;
+  j["n_loading"] = pr.n_loading;
+  json arr = json::array();
+  for (std::size_t c = 0; c < pr.channels.size(); ++c) {
+    const an::ChannelPressure& cp = pr.channels[c];
+    json ch = {{"channel", channels[c].first}};
+    put(ch, "slope_Pa_per_N", cp.fit.slope, 1.0);
+    put(ch, "slope_Pa_per_N_se", cp.fit.slope_se, 1.0);
+    put(ch, "intercept_Pa", cp.fit.intercept, 1.0);
+    put(ch, "r2", cp.fit.r2, 1.0);
+    put(ch, "rise_Pa", cp.rise_Pa, 1.0);
+    put(ch, "rise_Pa_sd", cp.rise_sd_Pa, 1.0);
+    put(ch, "hysteresis_ratio", cp.hysteresis_ratio_mean, 1.0);
+    json per = json::array();
+    for (const auto& h : cp.hysteresis) {
+      json e = json::object();
+      put(e, "loop_area_Pa_N", h.loop_area_Pa_N, 1.0);
+      put(e, "ratio", h.ratio, 1.0);
+      put(e, "max_gap_Pa", h.max_gap_Pa, 1.0);
+      per.push_back(e);
+    }
+    ch["hysteresis_per_rep"] = per;
+    arr.push_back(ch);
+  }
+  j["channels"] = arr;
+  print_or_json(ctx, j);
+  return kOk;
+}
+
+// --- boyle -----------------------------------------------------------------------------------
+
+/// The paper's pad (§V-A, §V-D): channels 1-3 deep (100 mm), 4-6 shallow (90 mm).
+double pad_channel_length_mm(int channel) { return channel <= 3 ? 100.0 : 90.0; }
+
+json boyle_row(const BoyleCli& o, double dP_Pa, double length_mm) {
+  an::ChannelGeometry g;
+  g.channel_diameter_m = o.channel_diameter_mm * 1e-3;
+  g.channel_length_m = length_mm * 1e-3;
+  g.tube_bore_m = o.tube_bore_mm * 1e-3;
+  g.tube_length_m = o.tube_length_mm * 1e-3;
+  const double V1 = an::enclosed_volume_m3(g);
+  const an::BoyleResult b = an::boyle_volume_change(V1, dP_Pa, o.ambient_Pa);
+  const double mm3 = 1e9;
+  return {{"pressure_change_Pa", dP_Pa},
+          {"channel_length_mm", length_mm},
+          {"enclosed_volume_mm3", b.V1_m3 * mm3},
+          {"P2_Pa", b.P2_Pa},
+          {"volume_change_isothermal_mm3", b.dV_isothermal_m3 * mm3},
+          {"volume_change_adiabatic_mm3", b.dV_adiabatic_m3 * mm3}};
+}
+
+int analyze_boyle(const Context& ctx, const BoyleCli& o, bool from_file) {
+  json j;
+  j["params"] = {{"channel_diameter_mm", o.channel_diameter_mm},
+                 {"tube_bore_mm", o.tube_bore_mm},
+                 {"tube_length_mm", o.tube_length_mm},
+                 {"ambient_Pa", o.ambient_Pa},
+                 {"law", "isothermal P1 V1 = P2 V2 (adiabatic P V^1.4 as the bound)"}};
+  json rows = json::array();
+  if (!from_file) {
+    const double L = o.channel_length_mm.empty() ? 90.0 : o.channel_length_mm.front();
+    rows.push_back(boyle_row(o, o.pressure_change_Pa, L));
+  } else {
+    an::IndentationParams p;  // the paper's I_c: the recording must reach contact
+    p.min_points = 1;
+    const Loaded l = load(o.input, p);
+    const auto channels = pressure_channels(l, o.input);
+    if (o.channel_length_mm.size() > 1 && o.channel_length_mm.size() != 6)
+      throw palp::ConfigError("--channel-length-mm takes 1 value (every channel) or 6 (channels 1-6), got " +
+                              std::to_string(o.channel_length_mm.size()));
+    j["params"]["input"] = o.input;
+    j["params"]["pressure"] = "mean over repetitions of each channel's pressure at the repetition's "
+                              "highest current (the maximum force)";
+    // each repetition's sample of peak current (the first, on a plateau)
+    std::vector<Eigen::Index> peaks;
+    for (Eigen::Index k = 0, b = 0; k <= l.curve.i_A.size(); ++k) {
+      if (k < l.curve.i_A.size() && l.curve.rep[k] == l.curve.rep[b]) continue;
+      Eigen::Index top = 0;
+      l.curve.i_A.segment(b, k - b).maxCoeff(&top);
+      peaks.push_back(b + top);
+      b = k;
+    }
+    for (const auto& [ch, col] : channels) {
+      std::vector<an::Value> at_peak;
+      for (Eigen::Index k : peaks) at_peak.push_back(an::Value::of((*col)[static_cast<std::size_t>(k)]));
+      const an::MeanSd m = an::mean_sd(at_peak);
+      const double L = o.channel_length_mm.empty()       ? pad_channel_length_mm(ch)
+                       : o.channel_length_mm.size() == 1 ? o.channel_length_mm.front()
+                                                         : o.channel_length_mm[static_cast<std::size_t>(ch - 1)];
+      json row = {{"channel", ch}};
+      row.update(boyle_row(o, *m.mean.value, L));
+      put(row, "pressure_change_Pa_sd", m.sd, 1.0);
+      row["repetitions"] = m.n;
+      rows.push_back(row);
+    }
+  }
+  j["channels"] = rows;
+  if (ctx.json) {
+    print_json(j);
+  } else {
+    for (const auto& r : rows) {
+      if (r.contains("channel")) std::printf("channel %d: ", r["channel"].get<int>());
+      std::printf("dP %.6g Pa, V1 %.6g mm3, dV %.6g mm3 isothermal (%.6g mm3 adiabatic)\n",
+                  r["pressure_change_Pa"].get<double>(), r["enclosed_volume_mm3"].get<double>(),
+                  r["volume_change_isothermal_mm3"].get<double>(),
+                  r["volume_change_adiabatic_mm3"].get<double>());
+    }
+  }
+  return kOk;
+}
+
+void add_indentation_options(CLI::App* cmd, AnalyzeCli& o) {
+  cmd->add_option("--input", o.input, "The recording (run.csv; its sidecar is read when present)")
+      ->required();
+  cmd->add_option("--kf-N-per-A", o.kf_N_per_A, "Force constant K_f, N/A")
+      ->check(kPositive)->capture_default_str();
+  cmd->add_option("--ic-A", o.ic_A, "Contact threshold current I_c, A")
+      ->check(CLI::Range(-4.0, 4.0))->capture_default_str();
+  cmd->add_option("--kv-N-per-mm", o.kv_N_per_mm, "Return springs k_v, N/mm")
+      ->check(kNonNegative)->capture_default_str();
+  cmd->add_option("--tip-radius-mm", o.tip_radius_mm, "Tip radius R, mm")
+      ->check(kPositive)->capture_default_str();
+  cmd->add_option("--poisson", o.poisson, "Poisson's ratio of the specimen (E = E* (1 - nu^2))")
+      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  auto* bias_i = cmd->add_option("--bias-current-A", o.bias_current_A,
+                                 "Bias current I_0 of the operating point F_0 = K_f (I_0 - I_c), A")
+                     ->check(CLI::Range(-4.0, 4.0))->capture_default_str();
+  o.bias_force_opt = cmd->add_option("--bias-force-N", o.bias_force_N,
+                                     "Bias force F_0 instead of --bias-current-A, N")
+                         ->check(kPositive)->excludes(bias_i);
+  o.thickness_opt = cmd->add_option("--thickness-mm", o.thickness_mm,
+                                    "Sample thickness for the finite-thickness correction, mm "
+                                    "(default: none, a half-space)")
+                        ->check(kPositive);
+  cmd->add_flag("--unbonded", o.unbonded,
+                "The sample lies loose on its support (default: bonded); with --thickness-mm");
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app, Context& ctx) {
+  auto* cmd = app.add_subcommand("analyze", "Analyse recordings (no device needed)");
+  cmd->require_subcommand(1, 1);
+
+  auto ind = std::make_shared<AnalyzeCli>();
+  auto* indentation = cmd->add_subcommand(
+      "indentation", "Quasi-static indentation: linear, Hertz and Sneddon fits with the contact "
+                     "point, model choice by AIC, delta0, tangent and window stiffness");
+  add_indentation_options(indentation, *ind);
+  indentation->callback([&ctx, ind] { ctx.action = [&ctx, ind] { return analyze_indentation(ctx, *ind); }; });
+
+  auto pr = std::make_shared<AnalyzeCli>();
+  auto* pressure = cmd->add_subcommand(
+      "pressure", "Each pressure channel against the object force on the loading branch: slope, "
+                  "R^2, rise, load/unload hysteresis");
+  add_indentation_options(pressure, *pr);
+  pressure->callback([&ctx, pr] { ctx.action = [&ctx, pr] { return analyze_pressure(ctx, *pr); }; });
+
+  auto bo = std::make_shared<BoyleCli>();
+  auto* boyle = cmd->add_subcommand(
+      "boyle", "Enclosed-volume change of a channel and its tube from a pressure rise "
+               "(isothermal Boyle's law; the adiabatic value as the bound)");
+  auto* dp = boyle->add_option("--pressure-change-Pa", bo->pressure_change_Pa,
+                               "The pressure rise above ambient, Pa");
+  auto* in = boyle->add_option("--input", bo->input,
+                               "A recording instead: each channel's pressure at the maximum force")
+                 ->excludes(dp);
+  boyle->add_option("--channel-diameter-mm", bo->channel_diameter_mm, "Channel diameter, mm")
+      ->check(kPositive)->capture_default_str();
+  boyle->add_option("--channel-length-mm", bo->channel_length_mm,
+                    "Channel length, mm: one value, or 6 for channels 1-6 with --input (default: "
+                    "90; with --input the paper's pad, channels 1-3 100 and 4-6 90)")
+      ->check(kPositive);
+  boyle->add_option("--tube-bore-mm", bo->tube_bore_mm, "Tube inner diameter, mm (1/16 in)")
+      ->check(kPositive)->capture_default_str();
+  boyle->add_option("--tube-length-mm", bo->tube_length_mm, "Tube length, mm (0: no tube)")
+      ->check(kNonNegative)->capture_default_str();
+  boyle->add_option("--ambient-Pa", bo->ambient_Pa, "Ambient (absolute) pressure P1, Pa")
+      ->check(kPositive)->capture_default_str();
+  boyle->callback([&ctx, bo, dp, in] {
+    if (dp->count() == 0 && in->count() == 0)
+      throw CLI::ValidationError("analyze boyle", "give --pressure-change-Pa or --input");
+    const bool from_file = in->count() > 0;
+    ctx.action = [&ctx, bo, from_file] { return analyze_boyle(ctx, *bo, from_file); };
+  });
+}
+
+}  // namespace palpctl
