@@ -1,6 +1,7 @@
 // palp::Robot's link handling against palp-sim's emulator (robot-bridge.md §9): a reply delayed
 // past the response timeout makes the client reconnect and the command still runs exactly once;
-// a dropped connection is re-established transparently; a frozen bridge heartbeat is a
+// a dropped connection is re-established transparently; a command whose write failed is
+// written again with the same seq to a restarted bridge; a frozen bridge heartbeat is a
 // RobotLinkError until it moves again; a bridge that is gone is a RobotLinkError naming the URI.
 #include <gmock/gmock.h>
 
@@ -84,6 +85,39 @@ TEST(RobotLink, AFrozenBridgeHeartbeatIsARobotLinkErrorUntilItMovesAgain) {
   }
   EXPECT_TRUE(back) << "the client reconnects once the heartbeat moves";
   EXPECT_EQ(robot->move_lin_rel(palp::Pose{0.001, 0, 0, 0, 0, 0}, 0.05, 10s).result, rb::Result::done);
+}
+
+TEST(RobotLink, ACommandWhoseWriteFailedIsWrittenAgainWithTheSameSeqToARestartedBridge) {
+  auto sim = std::make_unique<SimProcess>(robot_args(), false);
+  const std::uint16_t port = sim->robot_port();
+  ASSERT_NE(port, 0);
+  palp::RobotOptions o = fast_options();
+  o.watchdog = 10000ms;  // heartbeats 2.5 s apart: the command's own write meets the dead link
+  o.reconnect_for = 3000ms;
+  auto robot = connect_with_probe_tool(*sim, o);  // seq 1
+  sim->stop();  // the bridge application goes away; it comes back on the same port
+  std::unique_ptr<SimProcess> restarted;
+  std::jthread restart([&] {  // joined however the test body ends
+    std::this_thread::sleep_for(300ms);
+    restarted = std::make_unique<SimProcess>(
+        std::vector<std::string>{"--robot-port", std::to_string(port)}, false);
+  });
+  palp::MotionHandle h;
+  try {
+    h = robot->start_move_lin_rel(palp::Pose{-0.1, 0, 0, 0, 0, 0}, 0.5);
+  } catch (const palp::Error& e) {
+    FAIL() << e.what();
+  }
+  restart.join();
+  ASSERT_TRUE(restarted && restarted->robot_port() == port);
+  EXPECT_EQ(h.seq, 2);
+  // Rule 6: the restarted bridge had taken nothing (ack_seq 0), so the same block went again
+  // with seq 2; it ran once, from the restarted arm's start (tool 0: the flange at (600, 0,
+  // 550) mm, just outside the workspace, so the move goes 100 mm towards the base).
+  const palp::MotionResult r = robot->wait(h, 10s);
+  EXPECT_EQ(r.result, rb::Result::done);
+  EXPECT_POSITION_NEAR(r.final_pose, 0.500, 0.0, 0.550, 1e-6);
+  EXPECT_EQ(robot->status().ack_seq, 2);
 }
 
 TEST(RobotLink, ABridgeThatIsGoneIsARobotLinkErrorNamingTheUriAndTheLastError) {
