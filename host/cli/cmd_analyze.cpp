@@ -352,7 +352,17 @@ int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
     arr.push_back(ch);
   }
   j["channels"] = arr;
-  print_or_json(ctx, j);
+  if (ctx.json) {
+    print_json(j);
+    return kOk;
+  }
+  auto cell = [](const json& v) { return v.is_number() ? fmt(v.get<double>()) : std::string("-"); };
+  std::printf("%s: contact point %s mm (%s fit), %d loading samples at i_A >= I_c\n", o.input.c_str(),
+              fmt(pr.contact_z_m * 1e3).c_str(), an::model_name(*r.chosen), pr.n_loading);
+  std::printf("channel  slope_Pa_per_N          r2     rise_Pa  hysteresis_ratio\n");
+  for (const auto& ch : arr)
+    std::printf("%7d  %14s  %10s  %10s  %16s\n", ch["channel"].get<int>(), cell(ch["slope_Pa_per_N"]).c_str(),
+                cell(ch["r2"]).c_str(), cell(ch["rise_Pa"]).c_str(), cell(ch["hysteresis_ratio"]).c_str());
   return kOk;
 }
 

@@ -143,7 +143,7 @@ TEST_F(AnalyzeDir, IndentationOnAHertzSolidRecoversEstarContactPointDelta0AndTan
   const auto r = palpctl({"analyze", "indentation", "--input", csv, "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = parse(r);
-  EXPECT_NE(j["model_by_aic"], "linear");
+  ASSERT_EQ(j["model_by_aic"], "hertz");
   EXPECT_NEAR(j["contact_point_mm"].get<double>(), kContactZmm, 0.005);
   EXPECT_NEAR(j["E_star_hertz_Pa"].get<double>(), Estar, 0.01 * Estar);
   EXPECT_NEAR(j["E_hertz_Pa"].get<double>(), 0.75 * j["E_star_hertz_Pa"].get<double>(), 1e-6);
@@ -161,6 +161,17 @@ TEST_F(AnalyzeDir, IndentationOnAHertzSolidRecoversEstarContactPointDelta0AndTan
   EXPECT_TRUE(j["k_at_depth_N_per_mm"]["2_mm"].is_null());
   EXPECT_EQ(j["k_at_depth_N_per_mm"]["2_mm_reason"].get<std::string>().rfind("depth 2 mm, beyond", 0), 0u)
       << j["k_at_depth_N_per_mm"].dump();
+  // the delta method through E* (Hertz: delta0 ~ E*^(-2/3), k_t(delta0) ~ E*^(2/3), k_t(1 mm) ~ E*)
+  const double rel = j["E_star_hertz_Pa_se"].get<double>() / j["E_star_hertz_Pa"].get<double>();
+  {
+    EXPECT_NEAR(j["delta0_mm_se"].get<double>(), 2.0 / 3.0 * j["delta0_mm"].get<double>() * rel,
+                1e-3 * j["delta0_mm_se"].get<double>());
+    EXPECT_NEAR(j["k_tangent_N_per_mm_se"].get<double>(),
+                2.0 / 3.0 * j["k_tangent_N_per_mm"].get<double>() * rel,
+                1e-3 * j["k_tangent_N_per_mm_se"].get<double>());
+    EXPECT_NEAR(j["k_at_depth_N_per_mm_se"]["1_mm"].get<double>(),
+                j["k_at_depth_N_per_mm"]["1_mm"].get<double>() * rel, 1e-12);
+  }
   const double kfd = (an::hertz_force_N(0.75e-3, Estar, kR) - an::hertz_force_N(0.25e-3, Estar, kR)) / 0.5;
   EXPECT_NEAR(j["k_fd_N_per_mm"].get<double>(), kfd, 0.03 * kfd);
   EXPECT_NEAR(j["k_ls_window_N_per_mm"].get<double>(), kfd, 0.03 * kfd);
@@ -296,6 +307,13 @@ TEST_F(AnalyzeDir, PressureGivesEachChannelsSlopeAgainstObjectForceWithR2One) {
   EXPECT_EQ(j["channels"][2]["slope_Pa_per_N"], 0.0);
   EXPECT_TRUE(j["channels"][2]["r2"].is_null());
   EXPECT_EQ(j["channels"][2]["r2_reason"], "the pressure does not vary over the samples");
+  // the text form: a row per channel
+  const auto t = palpctl({"analyze", "pressure", "--input", csv});
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("channel  slope_Pa_per_N          r2     rise_Pa  hysteresis_ratio\n"),
+            std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("\n      6         194.99"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("\n      3               0           -"), std::string::npos) << t.out;
 }
 
 }  // namespace
