@@ -472,7 +472,8 @@ void add_indentation_options(CLI::App* cmd, AnalyzeCli& o) {
                                     "(default: none, a half-space)")
                         ->check(kPositive);
   cmd->add_flag("--unbonded", o.unbonded,
-                "The sample lies loose on its support (default: bonded); with --thickness-mm");
+                "The sample lies loose on its support (default: bonded); with --thickness-mm")
+      ->needs(o.thickness_opt);
 }
 
 }  // namespace

@@ -265,6 +265,16 @@ TEST(PalpctlAnalyzeBoyle, NeitherPressureNorInputIsAUsageError) {
   EXPECT_NE(r.err.find("give --pressure-change-Pa or --input"), std::string::npos) << r.err;
   const auto both = palpctl({"analyze", "boyle", "--pressure-change-Pa", "5", "--input", "x.csv"});
   EXPECT_EQ(both.code, 2) << both.err;
+  // and for indentation: both bias options, --unbonded without a thickness, a Poisson ratio > 0.5
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--bias-current-A", "1", "--bias-force-N", "1.4"},
+        std::vector<std::string>{"--unbonded"}, std::vector<std::string>{"--poisson", "0.7"},
+        std::vector<std::string>{"--kf-N-per-A", "abc"}}) {
+    std::vector<std::string> a = {"analyze", "indentation", "--input", "x.csv"};
+    a.insert(a.end(), args.begin(), args.end());
+    const auto u = palpctl(a);
+    EXPECT_EQ(u.code, 2) << args.front() << ": " << u.err;
+  }
 }
 
 TEST_F(AnalyzeDir, BoyleFromARecordingTakesEachChannelsPressureAtTheMaximumForce) {
