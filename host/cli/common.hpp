@@ -51,6 +51,7 @@ void add_calibrate_command(CLI::App& app, Context& ctx);
 void add_fault_command(CLI::App& app, Context& ctx);
 void add_trace_command(CLI::App& app, Context& ctx);  // trace, touch-off
 void add_analyze_command(CLI::App& app, Context& ctx);  // analyze indentation|pressure|boyle
+void add_indent_command(CLI::App& app, Context& ctx);
 
 /// Option checks with messages that name the option's value plainly (CLI11's own positive-number
 /// check prints its whole double range for a value that is not a number).

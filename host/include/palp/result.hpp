@@ -1,0 +1,95 @@
+// Result directories (issue 6): every experiment writes one directory, atomically, that holds
+// everything needed to understand and re-analyse it. The layout, for people and other programs,
+// is docs/result-format.md:
+//
+//   results/solid-p3/
+//     result.json        schema "palp.result/1": experiment, created_utc, sdk_version, device
+//                        and firmware, every parameter (lab units), the run's outcome, the
+//                        analysed numbers in lab units (the keys of `palpctl ... --json`)
+//     indentation.csv    the recording (recording.hpp, docs/recording-format.md)
+//     indentation.json   its sidecar
+//
+//   palp::write_result("results/solid-p3", run);            // appears whole, or not at all
+//   palp::LoadedResult r = palp::load_result("results/solid-p3");
+//   double d0 = r.summary["analysis"]["delta0_mm"];          // null + delta0_mm_reason if absent
+//   palp::IndentationRun again = palp::indentation_run_of(r); // re-analysable
+//
+// Atomicity: the files are written into a hidden sibling directory (`.solid-p3.tmp-<pid>-<n>`),
+// flushed to disk, and the directory is renamed into place: a crash leaves either no result
+// directory or a complete one (and at most a hidden temporary one, which can be deleted).
+// Overwrite::yes moves an existing directory aside first and deletes it after the rename.
+//
+// Errors: a missing or malformed result is a RecordingError naming the file (result.json, or the
+// recording) and the problem; wrong arguments (an existing directory without Overwrite::yes, a
+// run without samples) are ConfigError.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "palp/analysis/indentation.hpp"
+#include "palp/experiments.hpp"
+#include "palp/probe.hpp"
+#include "palp/recording.hpp"
+
+namespace palp {
+
+/// result.json's "schema". The reader accepts version 1.
+inline constexpr std::string_view kResultSchema = "palp.result/1";
+/// The summary's file name inside a result directory.
+inline constexpr std::string_view kResultFile = "result.json";
+
+/// Writes an indentation run as a result directory (`indentation.csv` + `.json`, result.json).
+/// Returns the directory's final path.
+std::filesystem::path write_result(const std::filesystem::path& dir, const IndentationRun& run,
+                                   Overwrite overwrite = Overwrite::no);
+
+/// A result directory read back.
+struct LoadedResult {
+  std::filesystem::path dir;
+  nlohmann::json summary;             ///< result.json as written
+  std::string experiment;             ///< "indentation"
+  /// The recordings result.json lists, by their file name ("indentation.csv"), read with their
+  /// sidecars (which must match their CSVs).
+  std::vector<std::pair<std::string, Recording>> recordings;
+};
+
+/// Reads a result directory. Throws RecordingError naming the file: no result.json, invalid
+/// JSON, another schema, a missing key, a listed recording that is missing or malformed.
+LoadedResult load_result(const std::filesystem::path& dir);
+
+/// An indentation run rebuilt from a loaded result: its settings (from result.json's
+/// "parameters"), its recording and device, analysed again with analyze_run. Throws
+/// RecordingError when the result is not an indentation or its parameters are incomplete.
+IndentationRun indentation_run_of(const LoadedResult& result);
+
+// --- JSON in lab units (the keys carry their units) ---------------------------------------------
+
+/// The analysed numbers with the issue's keys: params (the inputs echoed), contact_point_mm,
+/// k_linear_N_per_mm, r2_linear, E_star_hertz_Pa, r2_hertz, E_star_sneddon_Pa, r2_sneddon,
+/// model_by_aic, delta0_mm, k_tangent_N_per_mm, k_fd_N_per_mm, k_ls_window_N_per_mm,
+/// k_fd_paper_N_per_mm, k_at_depth_N_per_mm ("1_mm".. per tangent depth); every estimate with
+/// `<key>_se` (the fit's standard error; for delta0 and the tangents the delta method through
+/// the chosen model's k or E*; null + `<key>_se_reason` for the model-free ones) and, when
+/// `reps` is given, `<key>_sd` over repetitions (null + `<key>_sd_reason` below two). A value
+/// that cannot be computed is null with `<key>_reason`. Also E_hertz_Pa / E_sneddon_Pa
+/// (E = E* (1 - nu^2)), n_loading, n_unloading, F0_N, has_baseline, repetitions (the count) and
+/// the per-model AIC (aic_linear, ...). The same keys as `palpctl analyze indentation --json`.
+nlohmann::json indentation_summary_json(const analysis::IndentationResult& result,
+                                        const analysis::RepetitionSummary* reps,
+                                        const analysis::IndentationParams& params);
+/// The analysis inputs as the CLI names them: kf_N_per_A, ic_A, kv_N_per_mm, tip_radius_mm,
+/// poisson, bias_current_A, bias_force_N, thickness_mm (null when none), window_lo_mm, ...
+nlohmann::json indentation_params_json(const analysis::IndentationParams& p);
+/// The experiment's settings (ramp in A and s, limit in mm, rates in Hz) and its analysis params.
+nlohmann::json indentation_settings_json(const IndentationSettings& s);
+/// Device and firmware info, calibration (lab units) and a zeroing record, as in the sidecar.
+nlohmann::json device_json(const DeviceInfo& d);
+nlohmann::json calibration_json(const Calibration& c);
+nlohmann::json zeroing_json(const ZeroingRecord& z);
+
+}  // namespace palp

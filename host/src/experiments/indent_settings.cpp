@@ -1,0 +1,73 @@
+// IndentationSettings (experiments.hpp): presets, the device program, checks.
+#include <cmath>
+#include <string>
+
+#include "palp/error.hpp"
+#include "palp/experiments.hpp"
+
+namespace palp {
+
+namespace {
+
+constexpr double kCountM = 1e-6;
+constexpr double kMaxStreamRate_Hz = 1000;  // the issue: streamed at <= 1 kHz
+
+// levels of a staircase from `from` toward `to` by `step`, `to` included when on the grid (the
+// firmware's grid_points)
+double levels(double from, double to, double step) {
+  return std::floor(std::fabs(to - from) / step + 1e-3) + 1;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw ConfigError("indentation settings: " + what);
+}
+
+}  // namespace
+
+const char* preset_name(IndentationPreset p) { return p == IndentationPreset::one_d ? "1d" : "2d"; }
+
+IndentationSettings IndentationSettings::preset(IndentationPreset p) {
+  IndentationSettings s;
+  if (p == IndentationPreset::two_d) {
+    s.dwell_s = 0.025;
+    s.repetitions = 3;
+  }
+  return s;
+}
+
+RampProgram IndentationSettings::ramp_program() const {
+  RampProgram m;
+  m.start_A = static_cast<float>(start_A);
+  m.stop_A = static_cast<float>(stop_A);
+  m.step_A = static_cast<float>(step_A);
+  m.dwell_s = static_cast<float>(dwell_s);
+  m.repetitions = static_cast<std::uint16_t>(repetitions);
+  m.unload = unload ? 1 : 0;
+  m.displacement_limit_counts = static_cast<std::uint32_t>(std::lround(displacement_limit_m / kCountM));
+  return m;
+}
+
+double IndentationSettings::ramp_duration_s() const {
+  const double n = levels(start_A, stop_A, step_A);
+  return (unload ? 2 * n - 1 : n) * dwell_s * repetitions;
+}
+
+void IndentationSettings::validate() const {
+  auto finite = [](double v) { return std::isfinite(v); };
+  require(finite(start_A) && std::fabs(start_A) <= 4, "start_A must lie in -4..4 A");
+  require(finite(stop_A) && std::fabs(stop_A) <= 4, "stop_A must lie in -4..4 A");
+  require(stop_A > start_A, "stop_A must be above start_A (the ramp pushes into the specimen)");
+  require(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
+          "step_A must lie in 0.0001 A .. stop_A - start_A");
+  require(finite(dwell_s) && dwell_s >= 1e-4 && dwell_s <= 100, "dwell_s must lie in 0.0001..100 s");
+  require(repetitions >= 1 && repetitions <= 1000, "repetitions must lie in 1..1000");
+  require(finite(displacement_limit_m) && displacement_limit_m >= 0 && displacement_limit_m <= 0.1,
+          "displacement_limit_m must lie in 0..0.1 m (0: no limit)");
+  require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= kMaxStreamRate_Hz,
+          "stream_rate_Hz must lie in (0, 1000] Hz");
+  require(finite(zero_pressure_s) && zero_pressure_s >= 0.01 && zero_pressure_s <= 60,
+          "zero_pressure_s must lie in 0.01..60 s");
+  require(finite(settle_s) && settle_s >= 0 && settle_s <= 60, "settle_s must lie in 0..60 s");
+}
+
+}  // namespace palp

@@ -1,0 +1,235 @@
+// Result directories (result.hpp): written into a hidden sibling directory, flushed, renamed
+// into place; read back with errors that name the file.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "palp/error.hpp"
+#include "palp/result.hpp"
+
+namespace palp {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kIndentationStem = "indentation";
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+fs::path sibling(const fs::path& dir, const char* what) {
+  static std::atomic<unsigned> counter{0};
+  return dir.parent_path() / ("." + dir.filename().string() + "." + what + "-" +
+                              std::to_string(::getpid()) + "-" + std::to_string(counter++));
+}
+
+void fsync_path(const fs::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+  if (fd < 0) return;  // best effort: the rename below is what makes the result visible
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw RecordingError(p.string(), 0, std::string("cannot create: ") + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      ::close(fd);
+      throw RecordingError(p.string(), 0, std::string("cannot write: ") + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  const int e = errno;
+  ::close(fd);
+  if (!synced) throw RecordingError(p.string(), 0, std::string("cannot flush: ") + std::strerror(e));
+}
+
+json run_summary(const IndentationRun& run) {
+  const char* end = proto::enum_name(run.program.end);
+  return {{"end", run.interrupted ? "interrupted" : end ? end : "unknown"},
+          {"t_device_s", run.program.t_device_s},
+          {"repetitions_done", run.program.repetitions_done},
+          {"samples", run.recording.size()},
+          {"samples_missing", run.samples_missing},
+          {"interrupted", run.interrupted},
+          {"float_z_mm", run.float_z_m * 1e3}};
+}
+
+/// A required key of result.json, or a RecordingError naming it.
+const json& need(const json& j, const std::string& key, const std::string& file,
+                 const std::string& where = "") {
+  if (!j.is_object() || !j.contains(key))
+    throw RecordingError(file, 0, "missing key \"" + where + key + "\"");
+  return j.at(key);
+}
+
+double number(const json& j, const std::string& key, const std::string& file,
+              const std::string& where) {
+  const json& v = need(j, key, file, where);
+  if (!v.is_number()) throw RecordingError(file, 0, "\"" + where + key + "\" is not a number");
+  return v.get<double>();
+}
+
+}  // namespace
+
+fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwrite overwrite) {
+  if (run.recording.size() == 0)
+    throw ConfigError("write_result: the run has no samples of the ramp; nothing to write");
+  const fs::path dir = fs::absolute(dir_in).lexically_normal();
+  if (dir.filename().empty()) throw ConfigError("write_result: " + dir_in.string() + " names no directory");
+  std::error_code ec;
+  fs::create_directories(dir.parent_path(), ec);
+  if (ec) throw RecordingError(dir.parent_path().string(), 0, "cannot create: " + ec.message());
+  if (fs::exists(dir) && overwrite == Overwrite::no)
+    throw ConfigError(dir_in.string() + " already exists; choose another directory, or overwrite it");
+
+  json summary = {{"schema", kResultSchema},
+                  {"experiment", "indentation"},
+                  {"created_utc", utc_now()},
+                  {"sdk_version", sdk_version()}};
+  summary["device"] = run.recording.sidecar ? run.recording.sidecar->device : device_json(run.device);
+  summary["firmware_version"] = run.device.firmware_version;
+  summary["parameters"] = indentation_settings_json(run.settings);
+  summary["recordings"] = json::array({std::string(kIndentationStem) + ".csv"});
+  summary["run"] = run_summary(run);
+  if (run.analysis) {
+    summary["analysis"] = indentation_summary_json(
+        *run.analysis, run.repetitions ? &*run.repetitions : nullptr, run.settings.analysis);
+  } else {
+    summary["analysis"] = nullptr;
+    summary["analysis_reason"] = run.analysis_reason.empty() ? "not analysed" : run.analysis_reason;
+  }
+
+  const fs::path tmp = sibling(dir, "tmp");
+  try {
+    fs::create_directory(tmp);
+    write_recording(tmp / kIndentationStem, run.recording);
+    write_file(tmp / kResultFile, summary.dump(2) + "\n");
+    fsync_path(tmp, true);
+    if (fs::exists(dir)) {  // Overwrite::yes: move the old one aside, then delete it
+      const fs::path old = sibling(dir, "old");
+      fs::rename(dir, old);
+      fs::rename(tmp, dir);
+      fs::remove_all(old, ec);
+    } else {
+      fs::rename(tmp, dir);
+    }
+    fsync_path(dir.parent_path(), true);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(tmp, ec);
+    throw RecordingError(dir.string(), 0, std::string("cannot write the result: ") + e.code().message());
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  return dir;
+}
+
+LoadedResult load_result(const fs::path& dir) {
+  LoadedResult r;
+  r.dir = dir;
+  const fs::path file = dir / kResultFile;
+  const std::string name = file.string();
+  if (!fs::is_directory(dir)) throw RecordingError(name, 0, "no such result directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw RecordingError(name, 0, "no result.json: not a result directory (or unreadable)");
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    r.summary = json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." names the place
+    const std::string what = e.what();
+    const auto at = what.find("parse error");
+    throw RecordingError(name, 0, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at)));
+  }
+  if (!r.summary.is_object()) throw RecordingError(name, 0, "not a JSON object");
+  const json& schema = need(r.summary, "schema", name);
+  if (!schema.is_string() || schema.get<std::string>() != kResultSchema)
+    throw RecordingError(name, 0, "schema is " + schema.dump() + ", expected \"" +
+                                      std::string(kResultSchema) + "\"");
+  const json& experiment = need(r.summary, "experiment", name);
+  if (!experiment.is_string()) throw RecordingError(name, 0, "\"experiment\" is not a string");
+  r.experiment = experiment.get<std::string>();
+  const json& recordings = need(r.summary, "recordings", name);
+  if (!recordings.is_array()) throw RecordingError(name, 0, "\"recordings\" is not an array");
+  for (const json& f : recordings) {
+    if (!f.is_string() || f.get<std::string>().empty() ||
+        fs::path(f.get<std::string>()).has_parent_path())
+      throw RecordingError(name, 0, "\"recordings\" holds " + f.dump() +
+                                        ", not a file name inside the result directory");
+    const fs::path csv = dir / f.get<std::string>();
+    if (!fs::exists(csv)) throw RecordingError(csv.string(), 0, "listed in result.json but missing");
+    r.recordings.emplace_back(f.get<std::string>(), read_recording(csv));
+  }
+  return r;
+}
+
+IndentationRun indentation_run_of(const LoadedResult& result) {
+  const std::string name = (result.dir / kResultFile).string();
+  if (result.experiment != "indentation")
+    throw RecordingError(name, 0, "experiment is \"" + result.experiment + "\", not an indentation");
+  if (result.recordings.empty()) throw RecordingError(name, 0, "lists no recording");
+  IndentationRun run;
+  const json& p = need(result.summary, "parameters", name);
+  const std::string w = "parameters.";
+  IndentationSettings& s = run.settings;
+  s.start_A = number(p, "start_A", name, w);
+  s.stop_A = number(p, "stop_A", name, w);
+  s.step_A = number(p, "step_A", name, w);
+  s.dwell_s = number(p, "dwell_s", name, w);
+  s.repetitions = static_cast<int>(number(p, "reps", name, w));
+  s.displacement_limit_m = number(p, "displacement_limit_mm", name, w) * 1e-3;
+  s.stream_rate_Hz = number(p, "rate_Hz", name, w);
+  const json& a = need(p, "analysis", name, w);
+  const std::string wa = w + "analysis.";
+  auto& ap = s.analysis;
+  ap.force_constant_N_per_A = number(a, "kf_N_per_A", name, wa);
+  ap.contact_current_A = number(a, "ic_A", name, wa);
+  ap.spring_N_per_m = number(a, "kv_N_per_mm", name, wa) * 1e3;
+  ap.tip_radius_m = number(a, "tip_radius_mm", name, wa) * 1e-3;
+  ap.poisson = number(a, "poisson", name, wa);
+  ap.bias_current_A = number(a, "bias_current_A", name, wa);
+  ap.window_lo_m = number(a, "window_lo_mm", name, wa) * 1e-3;
+  ap.window_hi_m = number(a, "window_hi_mm", name, wa) * 1e-3;
+  ap.local_half_width_m = number(a, "local_half_width_mm", name, wa) * 1e-3;
+  if (a.contains("thickness_mm") && a["thickness_mm"].is_number())
+    ap.thickness = analysis::Thickness{a["thickness_mm"].get<double>() * 1e-3};
+  run.recording = result.recordings.front().second;
+  if (const json& run_j = need(result.summary, "run", name); run_j.is_object()) {
+    run.interrupted = run_j.value("interrupted", false);
+    run.samples_missing = run_j.value("samples_missing", std::uint64_t{0});
+    run.float_z_m = run_j.value("float_z_mm", 0.0) * 1e-3;
+  }
+  const json& d = need(result.summary, "device", name);
+  if (d.is_object()) {
+    run.device.serial = d.value("serial", "");
+    run.device.board = d.value("board", "");
+    run.device.firmware_version = d.value("firmware_version", "");
+  }
+  analyze_run(run);
+  return run;
+}
+
+}  // namespace palp

@@ -1,0 +1,323 @@
+// The lab-unit JSON of result.hpp: the analysed numbers with the keys, the parameters,
+// device, calibration and zeroing.
+#include <algorithm>
+#include <charconv>
+#include <iterator>
+#include <vector>
+#include <cmath>
+#include <string>
+
+#include "palp/protocol/messages.hpp"
+#include "palp/result.hpp"
+
+namespace palp {
+
+namespace {
+
+using nlohmann::json;
+using analysis::Value;
+
+constexpr double kMm = 1e3;          // m -> mm
+constexpr double kNPerMm = 1e-3;     // N/m -> N/mm
+
+/// The shortest decimal that reads back as the f32 (3.2f -> 3.2), as a double.
+double f32(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  double d = 0;
+  std::from_chars(buf, r.ptr, d);
+  return d;
+}
+
+json f32s(const float* v, std::size_t n) {
+  json a = json::array();
+  for (std::size_t k = 0; k < n; ++k) a.push_back(f32(v[k]));
+  return a;
+}
+
+/// key = value * scale, or null with key_reason.
+void put(json& j, const std::string& key, const Value& v, double scale) {
+  if (v.value) {
+    j[key] = *v.value * scale;
+  } else {
+    j[key] = nullptr;
+    j[key + "_reason"] = v.reason.empty() ? "not computed" : v.reason;
+  }
+}
+
+std::string depth_key(double depth_m) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, std::round(depth_m * 1e9) / 1e6);
+  return std::string(buf, r.ptr) + "_mm";
+}
+
+/// A fit's parameter by name, with its standard error.
+struct Param {
+  Value value, se;
+};
+Param fit_param(const std::optional<analysis::ModelFit>& fit, const std::string& why_absent,
+                const std::string& name) {
+  if (!fit) return {Value::absent(why_absent), Value::absent(why_absent)};
+  for (std::size_t k = 0; k < fit->names.size(); ++k) {
+    if (fit->names[k] != name) continue;
+    const auto i = static_cast<Eigen::Index>(k);
+    const double se = fit->se.size() > i ? fit->se[i] : NAN;
+    return {Value::of(fit->params[i]),
+            std::isfinite(se) ? Value::of(se) : Value::absent("the fit gives no standard error")};
+  }
+  return {Value::absent("the fit has no " + name), Value::absent("the fit has no " + name)};
+}
+
+Value fit_r2(const std::optional<analysis::ModelFit>& fit, const std::string& why_absent) {
+  return fit ? Value::of(fit->r2) : Value::absent(why_absent);
+}
+
+/// Mean/s.d. over repetitions of one model parameter, from each repetition's own fit.
+analysis::MeanSd per_rep_param(const analysis::RepetitionSummary& reps,
+                               std::optional<analysis::ModelFit> analysis::IndentationResult::*fit,
+                               const std::string& reason_field_hint, const std::string& name) {
+  std::vector<Value> v;
+  for (const auto& r : reps.per_rep) v.push_back(fit_param(r.*fit, reason_field_hint, name).value);
+  return analysis::mean_sd(v);
+}
+
+void put_sd(json& j, const std::string& key, const Value& sd, double scale) {
+  put(j, key + "_sd", sd.value || !sd.reason.empty() ? sd : Value::absent("no repetitions"), scale);
+}
+
+constexpr const char* kModelFree = "model-free: no fit standard error (see the _sd over repetitions)";
+
+/// Delta-method standard errors through the chosen model's scale parameter s (k or E*), which
+/// its force is proportional to, F = s g(delta) (as palpctl analyze indentation gives them):
+///   delta0: s g(delta0) = F_0  ->  d delta0/ds = -F_0 / (s k_t(delta0))
+///   k_t at a fixed depth = s g'(delta)  ->  se = k_t se_s / s
+///   k_t at delta0: d/ds = g'(delta0) + s g''(delta0) d delta0/ds (g'' by central difference)
+struct DerivedSe {
+  Value delta0, k_at_delta0;
+  std::vector<Value> k_at_depth;
+};
+DerivedSe derived_se(const analysis::IndentationResult& r, const analysis::ModelFit* m) {
+  DerivedSe d;
+  if (m == nullptr || m->params.size() == 0 || m->se.size() == 0 || !std::isfinite(m->se[0])) {
+    const std::string why = r.fit_reason.empty() ? "no model fitted" : r.fit_reason;
+    d.delta0 = d.k_at_delta0 = Value::absent(why);
+    d.k_at_depth.assign(r.k_tangent_N_per_m.size(), Value::absent(why));
+    return d;
+  }
+  const double s = m->params[0], se_s = m->se[0];
+  for (const auto& k : r.k_tangent_N_per_m)
+    d.k_at_depth.push_back(k ? Value::of(std::abs(*k.value * se_s / s)) : Value::absent(k.reason));
+  if (!r.delta0_m) {
+    d.delta0 = d.k_at_delta0 = Value::absent(r.delta0_m.reason);
+    return d;
+  }
+  const double d0 = *r.delta0_m.value, kt = m->stiffness_N_per_m(d0);
+  const double dd0_ds = -r.F0_N / (s * kt);
+  const double h = std::max(1e-9, 1e-4 * d0);
+  const double g2 = (m->stiffness_N_per_m(d0 + h) - m->stiffness_N_per_m(d0 - h)) / (2 * h * s);
+  d.delta0 = Value::of(std::abs(dd0_ds * se_s));
+  d.k_at_delta0 = Value::of(std::abs((kt / s + s * g2 * dd0_ds) * se_s));
+  return d;
+}
+
+}  // namespace
+
+json indentation_params_json(const analysis::IndentationParams& p) {
+  json j = {{"kf_N_per_A", p.force_constant_N_per_A},
+            {"ic_A", p.contact_current_A},
+            {"kv_N_per_mm", p.spring_N_per_m * kNPerMm},
+            {"tip_radius_mm", p.tip_radius_m * kMm},
+            {"poisson", p.poisson},
+            {"bias_current_A", p.bias_current_A},
+            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)},
+            {"window_lo_mm", p.window_lo_m * kMm},
+            {"window_hi_mm", p.window_hi_m * kMm},
+            {"local_half_width_mm", p.local_half_width_m * kMm},
+            {"min_points", p.min_points}};
+  json depths = json::array();
+  for (double d : p.tangent_depths_m) depths.push_back(d * kMm);
+  j["tangent_depths_mm"] = depths;
+  if (p.thickness) {
+    j["thickness_mm"] = p.thickness->thickness_m * kMm;
+  } else {
+    j["thickness_mm"] = nullptr;
+    j["thickness_mm_reason"] = "no finite-thickness correction asked for";
+  }
+  if (p.force_noise_N) j["force_noise_N"] = *p.force_noise_N;
+  return j;
+}
+
+json indentation_summary_json(const analysis::IndentationResult& r,
+                              const analysis::RepetitionSummary* reps,
+                              const analysis::IndentationParams& params) {
+  json j;
+  j["params"] = indentation_params_json(params);
+  const std::string lin_why = r.linear_reason.empty() ? r.fit_reason : r.linear_reason;
+  const std::string hz_why = r.hertz_reason.empty() ? r.fit_reason : r.hertz_reason;
+  const std::string sn_why = r.sneddon_reason.empty() ? r.fit_reason : r.sneddon_reason;
+
+  // the contact point (a z in the recording's frame) of the chosen model
+  put(j, "contact_point_mm", r.contact_z_m, kMm);
+  const analysis::ModelFit* chosen = nullptr;
+  if (r.chosen) chosen = *r.chosen == analysis::Model::linear ? &*r.linear
+                       : *r.chosen == analysis::Model::hertz  ? &*r.hertz
+                                                              : &*r.sneddon;
+  put(j, "contact_point_mm_se",
+      chosen ? Value::of(chosen->contact_z_se_m) : Value::absent(r.contact_z_m.reason), kMm);
+  if (reps) put_sd(j, "contact_point_mm", reps->contact_z_m.sd, kMm);
+
+  struct ModelKey {
+    const char* value_key;
+    const char* r2_key;
+    const char* aic_key;
+    const std::optional<analysis::ModelFit>& fit;
+    std::optional<analysis::ModelFit> analysis::IndentationResult::*member;
+    const std::string& why;
+    const char* param;
+    double scale;
+  };
+  const ModelKey models[] = {
+      {"k_linear_N_per_mm", "r2_linear", "aic_linear", r.linear, &analysis::IndentationResult::linear,
+       lin_why, "k_N_per_m", kNPerMm},
+      {"E_star_hertz_Pa", "r2_hertz", "aic_hertz", r.hertz, &analysis::IndentationResult::hertz, hz_why,
+       "Estar_Pa", 1.0},
+      {"E_star_sneddon_Pa", "r2_sneddon", "aic_sneddon", r.sneddon,
+       &analysis::IndentationResult::sneddon, sn_why, "Estar_Pa", 1.0},
+  };
+  for (const auto& m : models) {
+    const Param p = fit_param(m.fit, m.why, m.param);
+    put(j, m.value_key, p.value, m.scale);
+    put(j, std::string(m.value_key) + "_se", p.se, m.scale);
+    if (reps) {
+      const auto s = per_rep_param(*reps, m.member, "this repetition has no such fit", m.param);
+      put_sd(j, m.value_key, s.sd, m.scale);
+    }
+    if (m.param == std::string("Estar_Pa")) {  // E = E* (1 - nu^2), with its se and sd
+      const double e_of_estar = 1.0 - params.poisson * params.poisson;
+      const std::string model = m.member == &analysis::IndentationResult::hertz ? "hertz" : "sneddon";
+      const std::string key = "E_" + model + "_Pa";
+      put(j, key, p.value, e_of_estar);
+      put(j, key + "_se", p.se, e_of_estar);
+      if (reps) {
+        const auto s = per_rep_param(*reps, m.member, "this repetition has no such fit", m.param);
+        put_sd(j, key, s.sd, e_of_estar);
+      }
+    }
+    put(j, m.r2_key, fit_r2(m.fit, m.why), 1.0);
+    put(j, m.aic_key, m.fit ? Value::of(m.fit->aic) : Value::absent(m.why), 1.0);
+  }
+  if (r.chosen) {
+    j["model_by_aic"] = analysis::model_name(*r.chosen);
+  } else {
+    j["model_by_aic"] = nullptr;
+    j["model_by_aic_reason"] = r.fit_reason.empty() ? "no model could be fitted" : r.fit_reason;
+  }
+
+  struct Descriptor {
+    const char* key;
+    const Value& value;
+    const analysis::RepetitionSummary::Stat* stat;
+    double scale;
+  };
+  const Descriptor descriptors[] = {
+      {"delta0_mm", r.delta0_m, reps ? &reps->delta0_m : nullptr, kMm},
+      {"k_tangent_N_per_mm", r.k_tangent_at_delta0_N_per_m,
+       reps ? &reps->k_tangent_at_delta0_N_per_m : nullptr, kNPerMm},
+      {"k_fd_N_per_mm", r.k_fd_N_per_m, reps ? &reps->k_fd_N_per_m : nullptr, kNPerMm},
+      {"k_ls_window_N_per_mm", r.k_window_N_per_m, reps ? &reps->k_window_N_per_m : nullptr, kNPerMm},
+      {"k_fd_paper_N_per_mm", r.k_fd_paper_N_per_m, reps ? &reps->k_fd_paper_N_per_m : nullptr,
+       kNPerMm},
+  };
+  const DerivedSe se = derived_se(r, chosen);
+  const Value model_free = Value::absent(kModelFree);
+  const Value* descriptor_se[] = {&se.delta0, &se.k_at_delta0, &model_free, &model_free, &model_free};
+  for (std::size_t k = 0; k < std::size(descriptors); ++k) {
+    const auto& d = descriptors[k];
+    put(j, d.key, d.value, d.scale);
+    put(j, std::string(d.key) + "_se", *descriptor_se[k], d.scale);
+    if (d.stat) put_sd(j, d.key, d.stat->sd, d.scale);
+  }
+  json at = json::object(), at_sd = json::object(), at_se = json::object();
+  for (std::size_t k = 0; k < r.tangent_depths_m.size() && k < r.k_tangent_N_per_m.size(); ++k) {
+    const std::string key = depth_key(r.tangent_depths_m[k]);
+    put(at, key, r.k_tangent_N_per_m[k], kNPerMm);
+    put(at_se, key, k < se.k_at_depth.size() ? se.k_at_depth[k] : Value::absent("no model fitted"), kNPerMm);
+    if (reps && k < reps->k_tangent_N_per_m.size())
+      put(at_sd, key, reps->k_tangent_N_per_m[k].sd, kNPerMm);
+  }
+  j["k_at_depth_N_per_mm"] = at;
+  j["k_at_depth_N_per_mm_se"] = at_se;
+  if (reps) j["k_at_depth_N_per_mm_sd"] = at_sd;
+
+  j["F0_N"] = r.F0_N;
+  j["has_baseline"] = r.has_baseline;
+  j["n_loading"] = r.n_loading;
+  j["n_unloading"] = r.n_unloading;
+  if (reps) j["repetitions"] = reps->per_rep.size();
+  return j;
+}
+
+json indentation_settings_json(const IndentationSettings& s) {
+  return {{"start_A", s.start_A},
+          {"stop_A", s.stop_A},
+          {"step_A", s.step_A},
+          {"dwell_s", s.dwell_s},
+          {"reps", s.repetitions},
+          {"unload", s.unload},
+          {"displacement_limit_mm", s.displacement_limit_m * kMm},
+          {"rate_Hz", s.stream_rate_Hz},
+          {"zero_pressure", s.zero_pressure},
+          {"zero_pressure_s", s.zero_pressure_s},
+          {"settle_s", s.settle_s},
+          {"analysis", indentation_params_json(s.analysis)}};
+}
+
+json device_json(const DeviceInfo& d) {
+  return {{"serial", d.serial},
+          {"board", d.board},
+          {"firmware_version", d.firmware_version},
+          {"git_hash", d.git_hash},
+          {"protocol", std::to_string(d.protocol_major) + "." + std::to_string(d.protocol_minor)},
+          {"schema_hash", d.schema_hash},
+          {"capabilities", d.capabilities},
+          {"max_current_A", d.max_current_A},
+          {"control_rate_Hz", d.control_rate_Hz},
+          {"max_stream_rate_Hz", d.max_stream_rate_Hz},
+          {"heartbeat_timeout_s", d.heartbeat_timeout_s}};
+}
+
+json calibration_json(const Calibration& c) {
+  json table = json::array();
+  for (std::size_t k = 0; k < c.kf_position_counts.size && k < c.kf_N_per_A.size; ++k)
+    table.push_back({{"position_mm", c.kf_position_counts.items[k] * 1e-3},
+                     {"kf_N_per_A", f32(c.kf_N_per_A.items[k])}});
+  json j = {{"layout_version", c.layout_version},
+            {"kf_table", table},
+            {"current_offset_A", f32(c.current_offset_A)},
+            {"current_gain", f32(c.current_gain)},
+            {"pressure_offset_Pa", f32s(c.pressure_offset_Pa.data(), c.pressure_offset_Pa.size())},
+            {"pressure_gain", f32s(c.pressure_gain.data(), c.pressure_gain.size())},
+            {"spring_k_N_per_mm", f32(c.spring_k_N_per_m) * kNPerMm},
+            {"stroke_origin_valid", c.stroke_origin_valid != 0}};
+  if (c.stroke_origin_valid != 0) {
+    j["stroke_origin_mm"] = c.stroke_origin_counts * 1e-3;
+  } else {
+    j["stroke_origin_mm"] = nullptr;
+    j["stroke_origin_mm_reason"] = "not homed (palpctl calibrate home)";
+  }
+  return j;
+}
+
+json zeroing_json(const ZeroingRecord& z) {
+  // the recording sidecar's form (recording.hpp): offsets are the calibration block's f32 values,
+  // the home origin a whole encoder count in mm
+  const bool home = z.what == "home";
+  json values = json::array();
+  for (double v : z.values)
+    values.push_back(home ? static_cast<double>(std::llround(v * 1e6)) * 1e-3 : f32(static_cast<float>(v)));
+  const char* unit = home ? "mm" : z.what == "current_offset" ? "A" : z.what == "pressure_zero" ? "Pa" : "";
+  return {{"what", z.what}, {"t_device_s", z.t_device_s}, {"values", values},
+          {"values_unit", unit}, {"committed", z.committed}};
+}
+
+}  // namespace palp

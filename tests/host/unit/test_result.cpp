@@ -1,0 +1,239 @@
+// Result directories (palp/result.hpp): written whole into place, read back with the same numbers,
+// the issue's JSON keys in lab units, and errors that name the file.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "palp/error.hpp"
+#include "palp/result.hpp"
+#include "test_analysis_synth.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing::HasSubstr;
+
+constexpr double kEstar = 125.8e3;  // Pa, the 1D phantoms' bulk modulus
+constexpr double kR = 2.5e-3;
+
+/// A run as indent() returns it, from a synthetic Hertz staircase (2 repetitions, known E*).
+palp::IndentationRun synthetic_run() {
+  palp::analysis::test::SynthSpec spec;
+  spec.object_force = [](double d) {
+    return d > 0 ? 4.0 / 3.0 * kEstar * std::sqrt(kR) * std::pow(d, 1.5) : 0.0;
+  };
+  spec.contact_z_m = 25e-3;
+  spec.i_top_A = 1.5;
+  spec.i_step_A = 0.01;
+  spec.reps = 2;
+  spec.quantum_m = 1e-6;
+  const palp::analysis::Curve c = palp::analysis::test::synth_curve(spec);
+  palp::IndentationRun run;
+  run.settings = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
+  run.settings.stop_A = 1.5;
+  run.settings.repetitions = 2;
+  run.device.serial = "SIM-0001";
+  run.device.board = "palp-sim";
+  run.device.firmware_version = "1.2.3";
+  run.program.repetitions_done = 2;
+  for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
+    palp::RecordingRow row;
+    row.sample_index = static_cast<std::uint64_t>(k);
+    row.t_s = 0.1 * static_cast<double>(k);
+    row.i_cmd_A = c.i_A[k];
+    row.i_A = c.i_A[k];
+    row.z_mm = std::round(c.z_m[k] * 1e6) / 1e3;
+    row.rep = c.rep[k] - 1;
+    run.recording.append(row);
+  }
+  palp::Sidecar side;
+  side.device = palp::device_json(run.device);
+  side.program = {{"kind", "ramp"}};
+  run.recording.sidecar = side;
+  palp::analyze_run(run);
+  return run;
+}
+
+class ResultDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("palp-result-" + std::to_string(::getpid()) + "-" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  fs::path root_;
+};
+
+TEST_F(ResultDir, WrittenRunReadsBackWithTheSameRecordingSettingsAndAnalysis) {
+  const palp::IndentationRun run = synthetic_run();
+  ASSERT_TRUE(run.analysis) << run.analysis_reason;
+  const fs::path dir = palp::write_result(root_ / "solid-p3", run);
+  EXPECT_TRUE(fs::exists(dir / "result.json"));
+  EXPECT_TRUE(fs::exists(dir / "indentation.csv"));
+  EXPECT_TRUE(fs::exists(dir / "indentation.json"));
+
+  const palp::LoadedResult loaded = palp::load_result(dir);
+  EXPECT_EQ(loaded.experiment, "indentation");
+  EXPECT_EQ(loaded.summary["schema"], "palp.result/1");
+  EXPECT_EQ(loaded.summary["sdk_version"], palp::sdk_version());
+  EXPECT_EQ(loaded.summary["firmware_version"], "1.2.3");
+  EXPECT_EQ(loaded.summary["device"]["serial"], "SIM-0001");
+  EXPECT_DOUBLE_EQ(loaded.summary["parameters"]["dwell_s"].get<double>(), 0.1);
+  EXPECT_DOUBLE_EQ(loaded.summary["parameters"]["displacement_limit_mm"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(loaded.summary["parameters"]["analysis"]["kv_N_per_mm"].get<double>(), 0.0439);
+  ASSERT_EQ(loaded.recordings.size(), 1u);
+  const palp::Recording& r = loaded.recordings[0].second;
+  ASSERT_EQ(r.size(), run.recording.size());
+  EXPECT_EQ(r.z_mm, run.recording.z_mm);  // bit-exact
+  EXPECT_EQ(r.rep, run.recording.rep);
+
+  // re-analysed from the files: the same numbers as the run's own analysis
+  const palp::IndentationRun again = palp::indentation_run_of(loaded);
+  ASSERT_TRUE(again.analysis) << again.analysis_reason;
+  EXPECT_DOUBLE_EQ(*again.analysis->delta0_m.value, *run.analysis->delta0_m.value);
+  EXPECT_EQ(again.settings.repetitions, 2);
+  EXPECT_DOUBLE_EQ(again.settings.analysis.spring_N_per_m, 43.9);
+}
+
+TEST_F(ResultDir, SummaryCarriesTheIssueKeysInLabUnitsWithTheKnownModulus) {
+  const palp::IndentationRun run = synthetic_run();
+  const fs::path dir = palp::write_result(root_ / "r", run);
+  const json a = palp::load_result(dir).summary["analysis"];
+  for (const char* key : {"contact_point_mm", "k_linear_N_per_mm", "r2_linear", "E_star_hertz_Pa",
+                          "r2_hertz", "E_star_sneddon_Pa", "r2_sneddon", "model_by_aic", "delta0_mm",
+                          "k_tangent_N_per_mm", "k_fd_N_per_mm", "k_ls_window_N_per_mm",
+                          "k_fd_paper_N_per_mm", "k_at_depth_N_per_mm", "params"})
+    EXPECT_TRUE(a.contains(key)) << key;
+  EXPECT_NEAR(a["E_star_hertz_Pa"].get<double>(), kEstar, 0.01 * kEstar);
+  EXPECT_TRUE(a["E_star_hertz_Pa_se"].is_number());
+  EXPECT_TRUE(a["delta0_mm_sd"].is_number());  // two repetitions
+  EXPECT_NEAR(a["contact_point_mm"].get<double>(), 25.0, 0.005);
+  EXPECT_DOUBLE_EQ(a["params"]["kf_N_per_A"].get<double>(), 2.918);
+  EXPECT_DOUBLE_EQ(a["params"]["bias_force_N"].get<double>(), 2.918 * 0.5);
+  EXPECT_TRUE(a["params"]["thickness_mm"].is_null());
+  EXPECT_TRUE(a["params"].contains("thickness_mm_reason"));
+  // the tangent stiffness at the issue's depths
+  EXPECT_TRUE(a["k_at_depth_N_per_mm"].contains("1_mm"));
+  EXPECT_TRUE(a["k_at_depth_N_per_mm"].contains("4_mm"));
+  // delta0's standard error through the fit's E* (delta method): d0 ~ E*^(-2/3) for Hertz
+  const double se_rel = a["E_star_hertz_Pa_se"].get<double>() / a["E_star_hertz_Pa"].get<double>();
+  ASSERT_EQ(a["model_by_aic"], "hertz");
+  EXPECT_NEAR(a["delta0_mm_se"].get<double>() / a["delta0_mm"].get<double>(), 2.0 / 3.0 * se_rel,
+              0.05 * se_rel);
+  EXPECT_NEAR(a["E_hertz_Pa"].get<double>(), 0.75 * a["E_star_hertz_Pa"].get<double>(), 1e-6);
+  // model-free descriptors have no fit error: null with the reason
+  EXPECT_TRUE(a["k_fd_N_per_mm_se"].is_null());
+  EXPECT_EQ(a["k_fd_N_per_mm_se_reason"], "model-free: no fit standard error (see the _sd over repetitions)");
+}
+
+TEST_F(ResultDir, AnExistingDirectoryIsRefusedUnlessOverwriteAndThenReplacedWhole) {
+  palp::IndentationRun run = synthetic_run();
+  const fs::path dir = root_ / "r";
+  palp::write_result(dir, run);
+  try {
+    palp::write_result(dir, run);
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("already exists"));
+  }
+  std::ofstream(dir / "stray.txt") << "from the old result";
+  run.settings.repetitions = 7;  // only to tell the two apart
+  palp::write_result(dir, run, palp::Overwrite::yes);
+  EXPECT_FALSE(fs::exists(dir / "stray.txt"));
+  EXPECT_EQ(palp::load_result(dir).summary["parameters"]["reps"], 7);
+  // nothing hidden left beside it
+  for (const auto& e : fs::directory_iterator(root_))
+    EXPECT_EQ(e.path().filename(), "r") << "left behind: " << e.path();
+}
+
+TEST_F(ResultDir, ARunWithoutSamplesWritesNothing) {
+  palp::IndentationRun run;
+  EXPECT_THROW(palp::write_result(root_ / "empty", run), palp::ConfigError);
+  EXPECT_FALSE(fs::exists(root_ / "empty"));
+  EXPECT_TRUE(fs::is_empty(root_));
+}
+
+TEST_F(ResultDir, LoadErrorsNameTheFileAndTheProblem) {
+  auto message = [](const fs::path& dir) -> std::string {
+    try {
+      palp::load_result(dir);
+    } catch (const palp::RecordingError& e) {
+      return e.what();
+    }
+    return "no RecordingError";
+  };
+  EXPECT_THAT(message(root_ / "nowhere"), HasSubstr("no such result directory"));
+  fs::create_directories(root_ / "a");
+  EXPECT_THAT(message(root_ / "a"), HasSubstr("no result.json"));
+
+  const fs::path dir = palp::write_result(root_ / "b", synthetic_run());
+  const std::string file = (dir / "result.json").string();
+  std::ofstream(dir / "result.json") << "{\"schema\": \"palp.result/1\",\n \"experiment\": ";
+  EXPECT_THAT(message(dir), HasSubstr(file));
+  EXPECT_THAT(message(dir), HasSubstr("invalid JSON"));
+  std::ofstream(dir / "result.json") << R"({"schema": "palp.result/9", "experiment": "indentation"})";
+  EXPECT_THAT(message(dir), HasSubstr("schema is \"palp.result/9\", expected \"palp.result/1\""));
+  std::ofstream(dir / "result.json") << R"({"schema": "palp.result/1", "experiment": "indentation"})";
+  EXPECT_THAT(message(dir), HasSubstr("missing key \"recordings\""));
+  std::ofstream(dir / "result.json")
+      << R"({"schema": "palp.result/1", "experiment": "indentation", "recordings": ["../x.csv"]})";
+  EXPECT_THAT(message(dir), HasSubstr("not a file name inside the result directory"));
+  std::ofstream(dir / "result.json")
+      << R"({"schema": "palp.result/1", "experiment": "indentation", "recordings": ["gone.csv"]})";
+  EXPECT_THAT(message(dir), HasSubstr((dir / "gone.csv").string() + ": listed in result.json but missing"));
+}
+
+TEST(IndentationSettings, PresetsAreTheIssuesProtocols) {
+  const auto one = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
+  const auto two = palp::IndentationSettings::preset(palp::IndentationPreset::two_d);
+  for (const auto* s : {&one, &two}) {
+    EXPECT_DOUBLE_EQ(s->start_A, 0.5);
+    EXPECT_DOUBLE_EQ(s->stop_A, 3.0);
+    EXPECT_DOUBLE_EQ(s->step_A, 0.01);
+    EXPECT_TRUE(s->unload);
+    EXPECT_DOUBLE_EQ(s->displacement_limit_m, 5e-3);
+    EXPECT_LE(s->stream_rate_Hz, 1000.0);
+  }
+  EXPECT_DOUBLE_EQ(one.dwell_s, 0.1);
+  EXPECT_EQ(one.repetitions, 5);
+  EXPECT_DOUBLE_EQ(two.dwell_s, 0.025);
+  EXPECT_EQ(two.repetitions, 3);
+  const palp::RampProgram m = one.ramp_program();
+  EXPECT_EQ(m.displacement_limit_counts, 5000u);
+  EXPECT_EQ(m.repetitions, 5);
+  EXPECT_EQ(m.unload, 1);
+  // 251 levels up, 250 down per repetition (the firmware's schedule), 100 ms each
+  EXPECT_NEAR(one.ramp_duration_s(), 5 * 501 * 0.1, 1e-9);
+}
+
+TEST(IndentationSettings, BadSettingsAreOneLineConfigErrorsNamingTheSetting) {
+  auto message = [](auto change) -> std::string {
+    auto s = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
+    change(s);
+    try {
+      s.validate();
+    } catch (const palp::ConfigError& e) {
+      return e.what();
+    }
+    return "valid";
+  };
+  EXPECT_EQ(message([](auto& s) { s.stream_rate_Hz = 2000; }),
+            "indentation settings: stream_rate_Hz must lie in (0, 1000] Hz");
+  EXPECT_EQ(message([](auto& s) { s.stop_A = 0.4; }),
+            "indentation settings: stop_A must be above start_A (the ramp pushes into the specimen)");
+  EXPECT_EQ(message([](auto& s) { s.repetitions = 0; }),
+            "indentation settings: repetitions must lie in 1..1000");
+  EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = NAN; }),
+            "indentation settings: displacement_limit_m must lie in 0..0.1 m (0: no limit)");
+  EXPECT_EQ(message([](auto&) {}), "valid");
+}
+
+}  // namespace
