@@ -9,6 +9,8 @@
 //   if (run.analysis) use(run.analysis->delta0_m);
 //
 // Quasi-static indentation at the current position (paper §IV-A, §V-A), in this order:
+//   0. when the coil carries a current (a program running, or a contact watch that ended holding
+//      its current, as the toucher leaves it), stop it and wait settle_s: the coil rests at 0 A;
 //   1. zero the pressure channels (device RAM, kept in the sidecar), the coil at 0 A and so
 //      unloaded: before every indentation, as the paper does;
 //   2. float the coil at start_A: a contact watch at start_A lets the coil leave its rear stop
@@ -78,7 +80,7 @@ struct IndentationSettings {
 
 /// Progress, handed to the callback from the calling thread (a few times a second).
 struct IndentProgress {
-  std::string phase;     ///< "zeroing pressures", "floating the coil", "ramp"
+  std::string phase;     ///< "releasing the coil", "zeroing pressures", "floating the coil", "ramp"
   double fraction = 0;   ///< of the ramp's nominal duration, 0..1 (a turned-round ramp ends early)
   int repetition = 0;    ///< the device's repetition counter, from 0
   double z_m = 0;        ///< the newest sample's position, m

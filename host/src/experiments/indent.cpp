@@ -103,6 +103,15 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
     progress(p);
   };
 
+  // the coil at 0 A and at rest first: a program left running, or a contact watch that ended
+  // holding its current (the toucher's float), would load the specimen while the pressures are
+  // zeroed and keep the coil from leaving its rear stop when it is floated again
+  if (const Status st = probe.status();
+      st.program_state == proto::ProgramState::running || std::fabs(st.i_cmd_A) > 1e-3) {
+    report("releasing the coil", 0, nullptr);
+    probe.stop();
+    wait_device_time(probe, st.t_device_s + settings.settle_s, cancelled);
+  }
   if (settings.zero_pressure) {
     report("zeroing pressures", 0, nullptr);
     probe.zero_pressure(settings.zero_pressure_s);

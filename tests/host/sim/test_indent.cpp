@@ -27,6 +27,7 @@ using palp::IndentationRun;
 using palp::IndentationSettings;
 using palp::sim::test::SimProcess;
 using testing::HasSubstr;
+using namespace std::chrono_literals;
 
 struct Paper {
   const char* phantom;
@@ -124,6 +125,36 @@ TEST(Indent, InsertPosition3HasDelta0AndKoWithinTenPercentOfThePaper) {
   ASSERT_TRUE(r.analysis) << r.analysis_reason;
   report(r, kInsert.phantom, wall);
   expect_paper(r, kInsert);
+}
+
+TEST(Indent, ACoilLeftFloatingByAContactWatchIsReleasedThenZeroedAndFloatedAgain) {
+  // the toucher leaves the coil holding 0.5 A on the surface; the 2D preset (25 ms steps) follows
+  SimProcess sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  palp::ContactWatchProgram w;
+  w.hold_current_A = 0.5f;
+  w.threshold_counts = 500;
+  probe.load(w);
+  probe.start();
+  ASSERT_TRUE(probe.wait_contact(10s));
+  ASSERT_NEAR(probe.status().i_cmd_A, 0.5, 1e-3);  // the watch ended holding its current
+
+  IndentationSettings s = IndentationSettings::preset(IndentationPreset::two_d);
+  s.repetitions = 1;
+  s.stream_rate_Hz = 500;
+  std::vector<std::string> phases;
+  const IndentationRun r = palp::indent(probe, s, [&](const palp::IndentProgress& p) {
+    if (phases.empty() || phases.back() != p.phase) phases.push_back(p.phase);
+  });
+  EXPECT_THAT(phases, testing::ElementsAre("releasing the coil", "zeroing pressures",
+                                           "floating the coil", "ramp"));
+  EXPECT_NEAR(r.float_z_m, 25e-3, 0.2e-3);
+  ASSERT_TRUE(r.analysis) << r.analysis_reason;
+  ASSERT_TRUE(r.analysis->delta0_m);
+  EXPECT_NEAR(*r.analysis->delta0_m.value * 1e3, kSolid.delta0_mm, 0.1 * kSolid.delta0_mm);
+  EXPECT_NEAR(r.recording.t_s[1] - r.recording.t_s[0], 2e-3, 1e-9);
+  EXPECT_NEAR(probe.status().i_cmd_A, 0.0, 1e-6);  // and the coil is left at 0 A
 }
 
 TEST(Indent, BadSettingsAreRefusedBeforeTheDeviceMoves) {
