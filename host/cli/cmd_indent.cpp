@@ -30,6 +30,7 @@ struct IndentCli {
   double kf_N_per_A = 2.918, ic_A = 0.5, kv_N_per_mm = 0.0439, tip_radius_mm = 2.5, poisson = 0.5;
   double bias_current_A = 1.0;
   std::optional<double> bias_force_N, thickness_mm;
+  bool unbonded = false;
 };
 
 palp::IndentationSettings settings_of(const IndentCli& o) {
@@ -52,7 +53,9 @@ palp::IndentationSettings settings_of(const IndentCli& o) {
   a.tip_radius_m = o.tip_radius_mm * 1e-3;
   a.poisson = o.poisson;
   a.bias_current_A = o.bias_force_N ? o.ic_A + *o.bias_force_N / o.kf_N_per_A : o.bias_current_A;
-  if (o.thickness_mm) a.thickness = palp::analysis::Thickness{*o.thickness_mm * 1e-3};
+  if (o.thickness_mm)
+    a.thickness = palp::analysis::Thickness{
+        *o.thickness_mm * 1e-3, o.unbonded ? palp::analysis::Bonding::unbonded : palp::analysis::Bonding::bonded};
   return s;
 }
 
@@ -170,9 +173,11 @@ void add_indent_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--bias-force-N", o->bias_force_N, "Analysis: operating point F_0, N (instead of --bias-current-A)")
       ->check(kPositive)
       ->excludes(bias_i);
-  cmd->add_option("--thickness-mm", o->thickness_mm, "Analysis: layer thickness for the finite-thickness "
-                                                     "correction (bonded), mm")
-      ->check(kPositive);
+  auto* thickness = cmd->add_option("--thickness-mm", o->thickness_mm,
+                                    "Analysis: layer thickness for the finite-thickness correction, mm")
+                        ->check(kPositive);
+  cmd->add_flag("--unbonded", o->unbonded, "Analysis: the layer slides on its base (default: bonded)")
+      ->needs(thickness);
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return indent(ctx, *o); }; });
 }
 

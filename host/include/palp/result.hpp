@@ -83,7 +83,8 @@ nlohmann::json indentation_summary_json(const analysis::IndentationResult& resul
                                         const analysis::RepetitionSummary* reps,
                                         const analysis::IndentationParams& params);
 /// The analysis inputs as the CLI names them: kf_N_per_A, ic_A, kv_N_per_mm, tip_radius_mm,
-/// poisson, bias_current_A, bias_force_N, thickness_mm (null when none), window_lo_mm, ...
+/// poisson, bias_current_A, bias_force_N, thickness_mm (null when none) and bonding, window_lo_mm,
+/// window_hi_mm, local_half_width_mm, tangent_depths_mm, min_points.
 nlohmann::json indentation_params_json(const analysis::IndentationParams& p);
 /// The experiment's settings (ramp in A and s, limit in mm, rates in Hz) and its analysis params.
 nlohmann::json indentation_settings_json(const IndentationSettings& s);

@@ -215,7 +215,10 @@ IndentationRun indentation_run_of(const LoadedResult& result) {
   ap.window_hi_m = number(a, "window_hi_mm", name, wa) * 1e-3;
   ap.local_half_width_m = number(a, "local_half_width_mm", name, wa) * 1e-3;
   if (a.contains("thickness_mm") && a["thickness_mm"].is_number())
-    ap.thickness = analysis::Thickness{a["thickness_mm"].get<double>() * 1e-3};
+    ap.thickness = analysis::Thickness{a["thickness_mm"].get<double>() * 1e-3,
+                                       a.value("bonding", "bonded") == "unbonded"
+                                           ? analysis::Bonding::unbonded
+                                           : analysis::Bonding::bonded};
   run.recording = result.recordings.front().second;
   if (const json& run_j = need(result.summary, "run", name); run_j.is_object()) {
     run.interrupted = run_j.value("interrupted", false);

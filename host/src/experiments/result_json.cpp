@@ -139,6 +139,7 @@ json indentation_params_json(const analysis::IndentationParams& p) {
   j["tangent_depths_mm"] = depths;
   if (p.thickness) {
     j["thickness_mm"] = p.thickness->thickness_m * kMm;
+    j["bonding"] = p.thickness->bonding == analysis::Bonding::unbonded ? "unbonded" : "bonded";
   } else {
     j["thickness_mm"] = nullptr;
     j["thickness_mm_reason"] = "no finite-thickness correction asked for";

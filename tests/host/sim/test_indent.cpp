@@ -157,6 +157,25 @@ TEST(Indent, ACoilLeftFloatingByAContactWatchIsReleasedThenZeroedAndFloatedAgain
   EXPECT_NEAR(probe.status().i_cmd_A, 0.0, 1e-6);  // and the coil is left at 0 A
 }
 
+TEST(Indent, CancelledMidRampStopsTheRampKeepsWhatWasRecordedAndLeavesZeroCurrent) {
+  SimProcess sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  IndentationSettings s = IndentationSettings::preset(IndentationPreset::one_d);
+  s.stream_rate_Hz = 200;
+  double fraction = 0;
+  const IndentationRun r = palp::indent(
+      probe, s, [&](const palp::IndentProgress& p) { fraction = p.fraction; },
+      [&] { return fraction > 0.02; });  // about 5 s of the 250 s ramp
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.program.end, palp::proto::ProgramEnd::stopped_by_host);
+  ASSERT_GT(r.recording.size(), 0u);
+  EXPECT_LT(r.recording.t_s.back() - r.recording.t_s.front(), 0.2 * s.ramp_duration_s());
+  ASSERT_TRUE(r.recording.sidecar);
+  EXPECT_EQ(r.recording.sidecar->extra["interrupted"], true);
+  EXPECT_NEAR(probe.status().i_cmd_A, 0.0, 1e-6);
+}
+
 TEST(Indent, BadSettingsAreRefusedBeforeTheDeviceMoves) {
   SimProcess sim({}, false);
   ASSERT_TRUE(sim.ok());

@@ -154,6 +154,18 @@ TEST_F(ResultDir, AnExistingDirectoryIsRefusedUnlessOverwriteAndThenReplacedWhol
     EXPECT_EQ(e.path().filename(), "r") << "left behind: " << e.path();
 }
 
+TEST_F(ResultDir, AnUnbondedThicknessCorrectionIsReadBackAsUnbonded) {
+  palp::IndentationRun run = synthetic_run();
+  run.settings.analysis.thickness =
+      palp::analysis::Thickness{15e-3, palp::analysis::Bonding::unbonded};
+  const palp::LoadedResult loaded = palp::load_result(palp::write_result(root_ / "t", run));
+  EXPECT_EQ(loaded.summary["parameters"]["analysis"]["bonding"], "unbonded");
+  const palp::IndentationRun again = palp::indentation_run_of(loaded);
+  ASSERT_TRUE(again.settings.analysis.thickness);
+  EXPECT_DOUBLE_EQ(again.settings.analysis.thickness->thickness_m, 15e-3);
+  EXPECT_EQ(again.settings.analysis.thickness->bonding, palp::analysis::Bonding::unbonded);
+}
+
 TEST_F(ResultDir, ARunWithoutSamplesWritesNothing) {
   palp::IndentationRun run;
   EXPECT_THROW(palp::write_result(root_ / "empty", run), palp::ConfigError);
