@@ -99,9 +99,11 @@ int indent(const Context& ctx, const IndentCli& o) {
       [] { return interrupted(); });
   progress.finish(static_cast<std::uint64_t>(
       std::llround(run.recording.size() > 0 ? static_cast<double>(expected) : 0.0)));
-  if (run.recording.size() == 0)
-    throw palp::Error("indent: the ramp gave no samples" +
-                      std::string(run.interrupted ? " (interrupted before it started)" : ""));
+  if (run.recording.size() == 0 && run.interrupted) {
+    std::cerr << "palpctl: indent interrupted before the ramp started; nothing written\n";
+    return kInterrupted;
+  }
+  if (run.recording.size() == 0) throw palp::Error("indent: the ramp gave no samples");
   const auto written = palp::write_result(dir, run, o.overwrite ? palp::Overwrite::yes : palp::Overwrite::no);
 
   json summary = run.analysis ? palp::indentation_summary_json(*run.analysis,

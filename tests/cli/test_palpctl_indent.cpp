@@ -2,8 +2,14 @@
 // that come before the device moves.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -77,6 +83,36 @@ TEST_F(PalpctlIndent, JsonPrintsTheIssueKeysAndTheResultDirectoryReadsBack) {
     if (key == "params") continue;
     EXPECT_EQ(j.value(key, json("absent from indent --json")), value) << key;
   }
+}
+
+TEST_F(PalpctlIndent, CtrlCMidRampExits130AndWritesTheResultOfWhatWasRecorded) {
+  const std::string out = (dir_ / "cut").string();
+  ASSERT_TRUE(sim_.wait_no_client());
+  const std::vector<std::string> args = {PALPCTL_BINARY, "--uri", sim_.uri(), "indent",
+                                         "--rate-Hz", "200", "--out-dir", out};
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    std::_Exit(127);
+  }
+  // the 1d preset's 5 repetitions take ~120 s of device time, a few seconds here: 1 s is mid-ramp
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "palpctl died by a signal";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const palp::LoadedResult r = palp::load_result(out);
+  EXPECT_EQ(r.summary["run"]["interrupted"], true);
+  EXPECT_EQ(r.summary["run"]["end"], "interrupted");
+  EXPECT_GT(r.summary["run"]["samples"].get<int>(), 0);
+  EXPECT_LT(r.summary["run"]["repetitions_done"].get<int>(), 5);
 }
 
 TEST_F(PalpctlIndent, AnExistingOutDirIsRefusedBeforeTheDeviceMoves) {
