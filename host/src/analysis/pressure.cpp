@@ -226,7 +226,7 @@ BoyleResult boyle_volume_change(double V1_m3, double dP_Pa, double ambient_Pa, d
   b.P2_Pa = P2;
   // 1 - P1/P2 = dP/P2: the difference form keeps full precision for small rises
   b.dV_isothermal_m3 = V1_m3 * (dP_Pa / P2);
-  b.dV_adiabatic_m3 = -V1_m3 * std::expm1(std::log(ambient_Pa / P2) / gamma);
+  b.dV_adiabatic_m3 = 0.0 - V1_m3 * std::expm1(std::log(ambient_Pa / P2) / gamma);  // +0, not -0
   return b;
 }
 

@@ -65,6 +65,11 @@ TEST(BoyleVolume, DoublingThePressureHalvesTheVolumeIsothermallyAndBy39PercentAd
   EXPECT_NEAR(s.dV_isothermal_m3 / s.dV_adiabatic_m3, 1.4, 0.002);
   // a drop in pressure is an expansion: negative dV
   EXPECT_LT(boyle_volume_change(2757 * kMm3, -100.0).dV_isothermal_m3, 0.0);
+  // no rise, no change (and +0, which prints as 0, not -0)
+  const BoyleResult none = boyle_volume_change(2757 * kMm3, 0.0);
+  EXPECT_EQ(none.dV_isothermal_m3, 0.0);
+  EXPECT_FALSE(std::signbit(none.dV_adiabatic_m3));
+  EXPECT_FALSE(std::signbit(none.dV_isothermal_m3));
 }
 
 TEST(BoyleVolume, BadGeometryOrPressureIsAConfigErrorNamingIt) {
