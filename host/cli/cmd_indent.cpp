@@ -112,6 +112,12 @@ int indent(const Context& ctx, const IndentCli& o) {
                               : json{{"params", palp::indentation_params_json(settings.analysis)}};
   if (!run.analysis) summary["analysis_reason"] = run.analysis_reason;
   const char* end = palp::proto::enum_name(run.program.end);
+  if (run.pressure) {
+    summary["pressure"] = palp::pressure_summary_json(*run.pressure);
+  } else {
+    summary["pressure"] = nullptr;
+    summary["pressure_reason"] = run.pressure_reason;
+  }
   summary["result_dir"] = written.string();
   summary["run"] = {{"end", run.interrupted ? "interrupted" : end ? end : "unknown"},
                     {"samples", run.recording.size()},

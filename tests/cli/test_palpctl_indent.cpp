@@ -83,6 +83,13 @@ TEST_F(PalpctlIndent, JsonPrintsTheIssueKeysAndTheResultDirectoryReadsBack) {
     if (key == "params") continue;
     EXPECT_EQ(j.value(key, json("absent from indent --json")), value) << key;
   }
+  // and so does the pressure-force test (every channel; solid_1d has none, so noise about zero)
+  const auto pa = palpctl({"--json", "analyze", "pressure", "--input",
+                           (fs::path(out) / "indentation.csv").string()});
+  ASSERT_EQ(pa.code, 0) << pa.err;
+  const json pj = json::parse(pa.out);
+  EXPECT_EQ(j["pressure"]["channels"], pj["channels"]);
+  EXPECT_EQ(loaded.summary["pressure"]["channels"], pj["channels"]);
 }
 
 TEST_F(PalpctlIndent, CtrlCMidRampExits130AndWritesTheResultOfWhatWasRecorded) {

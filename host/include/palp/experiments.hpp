@@ -27,7 +27,8 @@
 //   5. the coil goes back to 0 A, and the recording is analysed with analyze_indentation (all
 //      repetitions pooled: the model fits, AIC, contact point) and analyze_repetitions (each
 //      repetition alone: mean and s.d. of the descriptors), with the caller's IndentationParams.
-// The pressure–force test is this run: its recording carries p1_Pa..p6_Pa against i_A.
+// The pressure–force test is this run: its recording carries p1_Pa..p6_Pa, and run.pressure
+// regresses each channel on the object force (analyze_pressure).
 //
 // Errors: bad settings are ConfigError before the device does anything; a coil that does not
 // float (pressed against something, or start_A below the float current) is a TimeoutError naming
@@ -42,6 +43,7 @@
 #include <string>
 
 #include "palp/analysis/indentation.hpp"
+#include "palp/analysis/pressure.hpp"
 #include "palp/probe.hpp"
 #include "palp/recording.hpp"
 
@@ -105,6 +107,11 @@ struct IndentationRun {
   /// Each repetition alone, with mean and s.d. of the descriptors over repetitions.
   std::optional<analysis::RepetitionSummary> repetitions;
   std::string analysis_reason;    ///< why analysis/repetitions are absent
+  /// The pressure–force test: each recorded channel (p1..p6) against the object force F_o on the
+  /// loading branches, with the chosen model's contact point (analysis/pressure.hpp); absent with
+  /// pressure_reason without a contact point or pressure columns.
+  std::optional<analysis::PressureResult> pressure;
+  std::string pressure_reason;
 };
 
 /// Runs the quasi-static indentation at the probe's current position (see the top of this file).
@@ -112,8 +119,9 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
                       const IndentProgressFn& progress = {},
                       const std::function<bool()>& cancelled = {});
 
-/// The analysis of a recording as indent() does it (pooled and per repetition); fills
-/// run.analysis, run.repetitions or run.analysis_reason. Exposed for re-analysing a loaded run.
+/// The analysis of a recording as indent() does it (pooled and per repetition, then the pressure
+/// channels); fills run.analysis, run.repetitions and run.pressure, or their reasons. Exposed
+/// for re-analysing a loaded run.
 void analyze_run(IndentationRun& run);
 
 /// A recording's columns as the analysis' Curve (z in m, i in A, repetitions).

@@ -5,7 +5,8 @@
 //   results/solid-p3/
 //     result.json        schema "palp.result/1": experiment, created_utc, sdk_version, device
 //                        and firmware, every parameter (lab units), the run's outcome, the
-//                        analysed numbers in lab units (the keys of `palpctl ... --json`)
+//                        analysed numbers in lab units (the keys of `palpctl ... --json`) and
+//                        the pressure channels against force
 //     indentation.csv    the recording (recording.hpp, docs/recording-format.md)
 //     indentation.json   its sidecar
 //
@@ -82,6 +83,10 @@ IndentationRun indentation_run_of(const LoadedResult& result);
 nlohmann::json indentation_summary_json(const analysis::IndentationResult& result,
                                         const analysis::RepetitionSummary* reps,
                                         const analysis::IndentationParams& params);
+/// The pressure–force test as `palpctl analyze pressure --json` gives it: contact_point_mm,
+/// n_loading, channels [{channel, slope_Pa_per_N (+ _se), intercept_Pa, r2, rise_Pa, rise_Pa_sd,
+/// hysteresis_ratio, hysteresis_per_rep [{loop_area_Pa_N, ratio, max_gap_Pa}]}].
+nlohmann::json pressure_summary_json(const analysis::PressureResult& result);
 /// The analysis inputs as the CLI names them: kf_N_per_A, ic_A, kv_N_per_mm, tip_radius_mm,
 /// poisson, bias_current_A, bias_force_N, thickness_mm (null when none) and bonding, window_lo_mm,
 /// window_hi_mm, local_half_width_mm, tangent_depths_mm, min_points.

@@ -251,6 +251,8 @@ void analyze_run(IndentationRun& run) {
   run.analysis.reset();
   run.repetitions.reset();
   run.analysis_reason.clear();
+  run.pressure.reset();
+  run.pressure_reason.clear();
   if (run.recording.size() == 0) {
     run.analysis_reason = "the recording has no samples of the ramp";
     return;
@@ -263,6 +265,27 @@ void analyze_run(IndentationRun& run) {
     run.analysis.reset();
     run.repetitions.reset();
     run.analysis_reason = e.what();
+    run.pressure_reason = "no indentation analysis: " + run.analysis_reason;
+    return;
+  }
+  if (!run.analysis->contact_z_m) {
+    run.pressure_reason = "no contact point for the object force: " + run.analysis->contact_z_m.reason;
+    return;
+  }
+  const Recording& r = run.recording;
+  for (const auto& col : r.p_Pa) {
+    if (!col) {
+      run.pressure_reason = "the recording lacks a pressure column";
+      return;
+    }
+  }
+  Eigen::MatrixXd P(static_cast<Eigen::Index>(r.size()), 6);
+  for (Eigen::Index ch = 0; ch < 6; ++ch)
+    P.col(ch) = Eigen::Map<const Eigen::VectorXd>((*r.p_Pa[static_cast<std::size_t>(ch)]).data(), P.rows());
+  try {
+    run.pressure = analysis::analyze_pressure(c, P, run.settings.analysis, *run.analysis->contact_z_m.value);
+  } catch (const ConfigError& e) {
+    run.pressure_reason = e.what();
   }
 }
 

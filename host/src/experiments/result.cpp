@@ -120,6 +120,12 @@ fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwri
     summary["analysis"] = nullptr;
     summary["analysis_reason"] = run.analysis_reason.empty() ? "not analysed" : run.analysis_reason;
   }
+  if (run.pressure) {
+    summary["pressure"] = pressure_summary_json(*run.pressure);
+  } else {
+    summary["pressure"] = nullptr;
+    summary["pressure_reason"] = run.pressure_reason.empty() ? "not analysed" : run.pressure_reason;
+  }
 
   const fs::path tmp = sibling(dir, "tmp");
   try {

@@ -258,6 +258,33 @@ json indentation_summary_json(const analysis::IndentationResult& r,
   return j;
 }
 
+json pressure_summary_json(const analysis::PressureResult& pr) {
+  json j = {{"contact_point_mm", pr.contact_z_m * kMm}, {"n_loading", pr.n_loading}};
+  json arr = json::array();
+  for (const analysis::ChannelPressure& cp : pr.channels) {
+    json ch = {{"channel", cp.channel}};
+    put(ch, "slope_Pa_per_N", cp.fit.slope, 1.0);
+    put(ch, "slope_Pa_per_N_se", cp.fit.slope_se, 1.0);
+    put(ch, "intercept_Pa", cp.fit.intercept, 1.0);
+    put(ch, "r2", cp.fit.r2, 1.0);
+    put(ch, "rise_Pa", cp.rise_Pa, 1.0);
+    put(ch, "rise_Pa_sd", cp.rise_sd_Pa, 1.0);
+    put(ch, "hysteresis_ratio", cp.hysteresis_ratio_mean, 1.0);
+    json per = json::array();
+    for (const auto& h : cp.hysteresis) {
+      json e = json::object();
+      put(e, "loop_area_Pa_N", h.loop_area_Pa_N, 1.0);
+      put(e, "ratio", h.ratio, 1.0);
+      put(e, "max_gap_Pa", h.max_gap_Pa, 1.0);
+      per.push_back(e);
+    }
+    ch["hysteresis_per_rep"] = per;
+    arr.push_back(ch);
+  }
+  j["channels"] = arr;
+  return j;
+}
+
 json indentation_settings_json(const IndentationSettings& s) {
   return {{"start_A", s.start_A},
           {"stop_A", s.stop_A},

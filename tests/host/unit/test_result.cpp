@@ -49,6 +49,9 @@ palp::IndentationRun synthetic_run() {
     row.i_A = c.i_A[k];
     row.z_mm = std::round(c.z_m[k] * 1e6) / 1e3;
     row.rep = c.rep[k] - 1;
+    // channel m reads 20 m Pa per newton of object force (a pressure-force test of known slope)
+    const double Fo = spec.object_force(c.z_m[k] - spec.contact_z_m);
+    for (std::size_t m = 0; m < 6; ++m) row.p_Pa[m] = 20.0 * static_cast<double>(m + 1) * Fo;
     run.recording.append(row);
   }
   palp::Sidecar side;
@@ -132,6 +135,20 @@ TEST_F(ResultDir, SummaryCarriesTheIssueKeysInLabUnitsWithTheKnownModulus) {
   // model-free descriptors have no fit error: null with the reason
   EXPECT_TRUE(a["k_fd_N_per_mm_se"].is_null());
   EXPECT_EQ(a["k_fd_N_per_mm_se_reason"], "model-free: no fit standard error (see the _sd over repetitions)");
+}
+
+TEST_F(ResultDir, ThePressureForceTestGivesEachChannelsKnownSlope) {
+  const palp::IndentationRun run = synthetic_run();
+  ASSERT_TRUE(run.pressure) << run.pressure_reason;
+  const json p = palp::load_result(palp::write_result(root_ / "p", run)).summary["pressure"];
+  ASSERT_EQ(p["channels"].size(), 6u);
+  for (int m = 0; m < 6; ++m) {
+    const json& ch = p["channels"][static_cast<std::size_t>(m)];
+    EXPECT_EQ(ch["channel"], m + 1);
+    EXPECT_NEAR(ch["slope_Pa_per_N"].get<double>(), 20.0 * (m + 1), 0.01 * 20.0 * (m + 1));
+    EXPECT_GT(ch["r2"].get<double>(), 0.999);
+  }
+  EXPECT_NEAR(p["contact_point_mm"].get<double>(), 25.0, 0.005);
 }
 
 TEST_F(ResultDir, AnExistingDirectoryIsRefusedUnlessOverwriteAndThenReplacedWhole) {
