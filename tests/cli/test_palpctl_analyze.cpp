@@ -326,5 +326,30 @@ TEST_F(AnalyzeDir, PressureGivesEachChannelsSlopeAgainstObjectForceWithR2One) {
   EXPECT_NE(t.out.find("\n      3               0           -"), std::string::npos) << t.out;
 }
 
+TEST_F(AnalyzeDir, ReanalysingPalpctlIndentsRecordingGivesTheSameValuesAsItsSummary) {
+  // palp-sim's solid 1D phantom, the probe 3 mm above it: indent floats the coil onto it and ramps
+  SimServer sim({"--phantom", "solid_1d", "--mount-mm", "0", "0", "-3"});
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  const std::string out = (dir_ / "solid").string();
+  const auto ind = palpctl({"--uri", sim.uri(), "--json", "indent", "--preset", "2d", "--reps", "2",
+                            "--out-dir", out});
+  ASSERT_EQ(ind.code, 0) << ind.err;
+  const json a = parse(ind);
+  const auto r = palpctl({"--json", "analyze", "indentation", "--input", out + "/indentation.csv"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json b = parse(r);
+  int compared = 0;
+  for (auto it = b.begin(); it != b.end(); ++it) {
+    if (it.key() == "params") continue;
+    ASSERT_TRUE(a.contains(it.key())) << "indent's summary lacks " << it.key();
+    EXPECT_EQ(a[it.key()], *it) << it.key();
+    ++compared;
+  }
+  EXPECT_GE(compared, 40);
+  // and it is the paper's solid: delta0 and k_o within 10 % of 2.935 mm and 0.746 N/mm
+  EXPECT_NEAR(b["delta0_mm"].get<double>(), 2.935, 0.2935);
+  EXPECT_NEAR(b["k_tangent_N_per_mm"].get<double>(), 0.746, 0.0746);
+}
+
 }  // namespace
 }  // namespace palpctl::test
