@@ -18,6 +18,9 @@
 //   The enclosed volume V1 is the channel's cylinder plus the tube's bore: the paper's
 //   Ø5 mm x 90 mm (shallow) and x 100 mm (deep) channels with a 1/16 in x 50 cm tube give
 //   2757 / 2953 mm^3, and its rises of 573 / 167 Pa give dV = 15.5 / 4.86 mm^3.
+//   (The paper's "ideal" 35.57 mm^3 for 3 mm of probe travel turned wholly into channel collapse
+//   is not reproduced here: the paper gives no formula for it; a paraboloid tip's displaced
+//   volume pi R delta^2 / 2 is 35.34 mm^3 at 3 mm.)
 //
 // Errors: malformed input (sizes differ, NaN/inf, a non-positive geometry or pressure) throws
 // palp::ConfigError naming the problem; a value that cannot be computed from valid input is an
