@@ -351,5 +351,31 @@ TEST_F(AnalyzeDir, ReanalysingPalpctlIndentsRecordingGivesTheSameValuesAsItsSumm
   EXPECT_NEAR(b["k_tangent_N_per_mm"].get<double>(), 0.746, 0.0746);
 }
 
+TEST_F(AnalyzeDir, PressureOnThePadAtRow8Column8RisesLinearlyOnChannels6And1WithTheirRatio) {
+  // row 8, column 8 of palp-sim's pad (x 80 mm, y 75 mm): over shallow channel 6 and deep channel 1
+  SimServer sim({"--phantom", "pad_2d", "--mount-mm", "80", "75", "-4"});
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  const std::string out = (dir_ / "r8c8").string();
+  const auto ind = palpctl({"--uri", sim.uri(), "indent", "--preset", "2d", "--reps", "1",
+                            "--out-dir", out});
+  ASSERT_EQ(ind.code, 0) << ind.err;
+  const auto r = palpctl({"--json", "analyze", "pressure", "--input", out + "/indentation.csv"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = parse(r);
+  ASSERT_EQ(j["channels"].size(), 6u) << j.dump(2);
+  const json& ch1 = j["channels"][0];
+  const json& ch6 = j["channels"][5];
+  EXPECT_GE(ch6["r2"].get<double>(), 0.98);  // issue 6's acceptance
+  EXPECT_GE(ch1["r2"].get<double>(), 0.98);
+  const double ratio = ch6["rise_Pa"].get<double>() / ch1["rise_Pa"].get<double>();
+  EXPECT_GE(ratio, 2.5);
+  EXPECT_LE(ratio, 4.5);
+  for (int c : {3, 4}) {  // channels 4 and 5 (shallow, under columns 2 and 5) hardly move
+    EXPECT_LT(std::abs(j["channels"][c]["rise_Pa"].get<double>()), 0.05 * ch6["rise_Pa"].get<double>())
+        << "channel " << c + 1;
+  }
+  EXPECT_LT(std::abs(ch6["hysteresis_ratio"].get<double>()), 0.02);
+}
+
 }  // namespace
 }  // namespace palpctl::test
