@@ -259,8 +259,15 @@ void analyze_run(IndentationRun& run) {
   }
   const analysis::Curve c = curve_of(run.recording);
   try {
-    run.analysis = analysis::analyze_indentation(c, run.settings.analysis);
     run.repetitions = analysis::analyze_repetitions(c, run.settings.analysis);
+    // one repetition: the pooled analysis is that repetition's (the same samples), so the fits
+    // (the costly part: the Sneddon fit solves per sample) are not run twice
+    const auto& per = run.repetitions->per_rep;
+    if (per.size() == 1 && per.front().chosen) {
+      run.analysis = per.front();
+    } else {
+      run.analysis = analysis::analyze_indentation(c, run.settings.analysis);
+    }
   } catch (const ConfigError& e) {
     run.analysis.reset();
     run.repetitions.reset();
