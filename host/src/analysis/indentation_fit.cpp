@@ -103,6 +103,12 @@ double profile(const Setup& s, double zc, double& theta, double& c) {
 
 struct Range { double lo, hi; std::string method; };
 
+// The profile start puts a good fit within a few iterations (3-5 on the paper's curves); a
+// curve the model does not describe well can creep along a curved valley of (E*, z_c) for
+// hundreds of small steps instead. 60 bound the time (a map analyses thousands of fits); the
+// fit then says it did not converge (ModelFit::converged) and keeps its best point.
+constexpr int kMaxFitIterations = 60;
+
 Range contact_range(const FitData& d) {
   const double zmin = d.z_m.minCoeff(), zmax = d.z_m.maxCoeff();
   const double span = std::max(zmax - zmin, 1e-9);
@@ -203,7 +209,8 @@ ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
   }
   const auto lm = detail::levenberg_marquardt(
       [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, d.z_m.size(), p0,
-      lo, hi, typ, [&](const Eigen::VectorXd& q, Eigen::MatrixXd& J) { jacobian(s, q, J); });
+      lo, hi, typ, [&](const Eigen::VectorXd& q, Eigen::MatrixXd& J) { jacobian(s, q, J); },
+      kMaxFitIterations);
   return finish(s, lm, p, start ? start->contact_method : range.method);
 }
 

@@ -45,7 +45,18 @@ LsqResult levenberg_marquardt(const ResidualFn& f, Eigen::Index n, const Eigen::
   out.rss = out.r.squaredNorm();
   double lambda = 1e-3;
   Eigen::VectorXd r_new(n);
+  double rss_stall_ref = out.rss;  // the cost kStallIterations iterations ago
+  constexpr int kStallIterations = 10;
   for (out.iterations = 0; out.iterations < max_iterations; ++out.iterations) {
+    // a long, curved valley (the contact point and the modulus trade off) can take hundreds of
+    // tiny steps: once ten iterations together lower the cost by less than 1e-8 of it, stop
+    if (out.iterations > 0 && out.iterations % kStallIterations == 0) {
+      if (rss_stall_ref - out.rss <= 1e-8 * (out.rss + 1e-300)) {
+        out.converged = true;
+        break;
+      }
+      rss_stall_ref = out.rss;
+    }
     const Eigen::MatrixXd J = jacobian(f, analytic, out.p, n, typical);
     const Eigen::MatrixXd A = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * out.r;
