@@ -523,6 +523,21 @@ void add_analyze_command(CLI::App& app, Context& ctx) {
     const bool from_file = in->count() > 0;
     ctx.action = [&ctx, bo, from_file] { return analyze_boyle(ctx, *bo, from_file); };
   });
+
+  auto mp = std::make_shared<AnalyzeCli>();
+  auto mc = std::make_shared<double>(0.1);
+  auto* map = cmd->add_subcommand(
+      "map", "A saved map (palpctl map) re-analysed point by point from its recordings with these "
+             "options: the k_fd stiffness grid and its soft and stiff rows and columns");
+  add_indentation_options(map, *mp);
+  map->get_option("--input")->description("The map's directory (map.json, points/r<row>_c<column>/)");
+  map->add_option("--contrast", *mc, "A line is soft (stiff) when its mean is this fraction below (above) "
+                                     "its neighbours' mean")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  map->callback([&ctx, mp, mc] {
+    ctx.action = [&ctx, mp, mc] { return analyze_map_command(ctx, mp->input, params_of(*mp), *mc); };
+  });
 }
 
 }  // namespace palpctl

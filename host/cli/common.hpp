@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palp/analysis/indentation.hpp"
 #include "palp/probe.hpp"
 
 namespace palpctl {
@@ -52,6 +53,10 @@ void add_fault_command(CLI::App& app, Context& ctx);
 void add_trace_command(CLI::App& app, Context& ctx);  // trace, touch-off
 void add_analyze_command(CLI::App& app, Context& ctx);  // analyze indentation|pressure|boyle
 void add_indent_command(CLI::App& app, Context& ctx);
+void add_map_command(CLI::App& app, Context& ctx);
+/// palpctl analyze map (registered with the other analyze commands, run by cmd_map.cpp).
+int analyze_map_command(const Context& ctx, const std::string& dir,
+                        const palp::analysis::IndentationParams& params, double contrast);
 
 /// Option checks with messages that name the option's value plainly (CLI11's own positive-number
 /// check prints its whole double range for a value that is not a number).

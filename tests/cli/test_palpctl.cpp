@@ -51,8 +51,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--help",     "--version",        "--uri",           "--json",         "--out",
       "--overwrite", "--reps",          "--no-unload",     "--cycles",       "--settle-cycles",
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
-      "--rig", "--plan", "--out-dir", "--resume", "--name",
-      "--input", "--poisson", "--unbonded"};
+      "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
+      "--input", "--poisson", "--unbonded", "--preset"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
@@ -77,6 +77,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       {{"fault", "clear"}, {}},
       {{"trace"}, {"--rig", "--plan", "--out-dir", "--resume"}},
       {{"touch-off"}, {"--rig", "--p1-mm", "--p2-mm", "--p3-mm", "--abc-deg", "--contact-E-star-Pa"}},
+      {{"map"}, {"--rig", "--plan", "--out-dir", "--resume", "--preset", "--reps"}},
+      {{"analyze", "map"}, {"--input", "--contrast"}},
       {{"analyze"}, {}},
       {{"analyze", "indentation"},
        {"--input", "--kf-N-per-A", "--ic-A", "--kv-N-per-mm", "--tip-radius-mm", "--poisson",

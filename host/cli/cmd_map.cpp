@@ -1,0 +1,172 @@
+// palpctl map: the stiffness map of a plan (touch, indent, retract at every point), resumable;
+// palpctl analyze map: a saved map's stiffness grid and the soft and stiff lines in it.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "common.hpp"
+#include "palp/map.hpp"
+#include "palp/result.hpp"
+#include "palp/robot.hpp"
+
+namespace palpctl {
+
+namespace {
+
+struct MapCli {
+  std::string rig, plan, out_dir = "map";
+  bool resume = false;
+  std::string preset = "2d";
+  int repetitions = 0;
+};
+
+json analysis_json(const palp::MapAnalysis& a) {
+  json k = json::array();
+  for (int r = 0; r < a.rows; ++r) {
+    json row = json::array();
+    for (int c = 0; c < a.columns; ++c) {
+      const auto& v = a.k_N_per_m[static_cast<std::size_t>(r * a.columns + c)];
+      row.push_back(v ? json(*v * 1e-3) : json(nullptr));
+    }
+    k.push_back(row);
+  }
+  auto means = [](const std::vector<double>& v) {
+    json j = json::array();
+    for (double x : v) j.push_back(std::isfinite(x) ? json(x * 1e-3) : json(nullptr));
+    return j;
+  };
+  return {{"k_fd_N_per_mm", k},
+          {"column_mean_k_fd_N_per_mm", means(a.column_mean_N_per_m)},
+          {"row_mean_k_fd_N_per_mm", means(a.row_mean_N_per_m)},
+          {"median_k_fd_N_per_mm", a.median_N_per_m * 1e-3},
+          {"contrast", a.contrast},
+          {"soft_columns", a.soft_columns},
+          {"stiff_columns", a.stiff_columns},
+          {"soft_rows", a.soft_rows},
+          {"stiff_rows", a.stiff_rows}};
+}
+
+void print_map(const palp::StiffnessMap& m, const palp::MapAnalysis& a) {
+  std::printf("stiffness k_fd (N/mm, 0.25-0.75 mm), %s, %d x %d:\n      ", m.plan_name.c_str(), a.rows, a.columns);
+  for (int c = 1; c <= a.columns; ++c) std::printf(" col %-3d", c);
+  std::printf("\n");
+  for (int r = 1; r <= a.rows; ++r) {
+    std::printf("row %-2d", r);
+    for (int c = 1; c <= a.columns; ++c) {
+      const auto& v = a.k_N_per_m[static_cast<std::size_t>((r - 1) * a.columns + c - 1)];
+      if (v)
+        std::printf(" %7.4f", *v * 1e-3);
+      else
+        std::printf(" %7s", "-");
+    }
+    std::printf("\n");
+  }
+  auto list = [](const std::vector<int>& v) {
+    std::string s;
+    for (int x : v) s += (s.empty() ? "" : ", ") + std::to_string(x);
+    return s.empty() ? std::string("none") : s;
+  };
+  std::printf("soft columns (>= %.0f %% below their neighbours): %s\n", 100 * a.contrast, list(a.soft_columns).c_str());
+  std::printf("soft rows: %s; stiff columns: %s; stiff rows: %s\n", list(a.soft_rows).c_str(),
+              list(a.stiff_columns).c_str(), list(a.stiff_rows).c_str());
+}
+
+int map(const Context& ctx, const MapCli& o) {
+  const palp::Rig rig = palp::load_rig(o.rig);
+  const palp::Plan plan = palp::load_plan(o.plan);
+  palp::MapOptions options;
+  options.settings = palp::IndentationSettings::preset(o.preset == "1d" ? palp::IndentationPreset::one_d
+                                                                        : palp::IndentationPreset::two_d);
+  if (o.repetitions > 0) options.settings.repetitions = o.repetitions;
+  options.resume = o.resume;
+  palp::ConnectOptions co;
+  co.timeout = std::chrono::milliseconds(static_cast<long>(ctx.timeout_s * 1000));
+  palp::Probe probe(rig.probe_uri, co);
+  auto robot = palp::connect_robot(rig.robot_uri);
+  catch_interrupts();
+  options.cancelled = [] { return interrupted(); };
+  Progress progress("map", static_cast<std::uint64_t>(plan.point_count()), !ctx.json);
+  options.progress = [&](const palp::MapProgress& p) { progress.update(p.done); };
+  const palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, o.out_dir, options);
+  progress.finish(m.resume_index);
+  const palp::MapAnalysis a = palp::analyze_map(m);
+  json j = {{"plan", m.plan_name},        {"rows", m.rows},
+            {"columns", m.columns},       {"complete", m.complete},
+            {"points_done", m.resume_index}, {"map_dir", o.out_dir}};
+  if (!m.complete) j["stopped_because"] = m.stopped_because;
+  j["analysis"] = analysis_json(a);
+  if (ctx.json)
+    print_json(j);
+  else {
+    print_map(m, a);
+    std::printf("results in %s (map.json, points/r<row>_c<column>/)\n", o.out_dir.c_str());
+  }
+  if (!m.complete) {
+    std::cerr << "palpctl: map stopped (" << m.stopped_because << ") after " << m.resume_index
+              << " points; the arm is at the safe height and the coil current is zero.\n"
+              << "resume with: palpctl map --rig " << o.rig << " --plan " << o.plan << " --out-dir " << o.out_dir
+              << " --resume\n";
+    return interrupted() ? kInterrupted : kRuntime;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
+                        double contrast) {
+  palp::StiffnessMap m = palp::load_map(dir);
+  Progress progress("analyze map", m.points.size(), !ctx.json);
+  std::size_t done = 0;
+  for (palp::MapPoint& p : m.points) {
+    progress.update(done++);
+    if (!p.indented || p.result_dir.empty()) continue;
+    palp::IndentationRun run = palp::indentation_run_of(palp::load_result(std::filesystem::path(dir) / p.result_dir));
+    run.settings.analysis = params;
+    palp::analyze_run(run);
+    p.k_fd_N_per_m.reset();
+    p.delta0_m.reset();
+    p.k_tangent_N_per_m.reset();
+    if (run.analysis) {
+      p.k_fd_N_per_m = run.analysis->k_fd_N_per_m.value;
+      p.k_fd_reason = run.analysis->k_fd_N_per_m.reason;
+      p.delta0_m = run.analysis->delta0_m.value;
+      p.k_tangent_N_per_m = run.analysis->k_tangent_at_delta0_N_per_m.value;
+    } else {
+      p.k_fd_reason = run.analysis_reason;
+    }
+  }
+  progress.finish(done);
+  const palp::MapAnalysis a = palp::analyze_map(m, contrast);
+  json j = {{"plan", m.plan_name}, {"rows", m.rows}, {"columns", m.columns}, {"complete", m.complete}};
+  j["params"] = palp::indentation_params_json(params);
+  j["analysis"] = analysis_json(a);
+  if (ctx.json)
+    print_json(j);
+  else
+    print_map(m, a);
+  return kOk;
+}
+
+void add_map_command(CLI::App& app, Context& ctx) {
+  auto o = std::make_shared<MapCli>();
+  auto* cmd = app.add_subcommand(
+      "map",
+      "Map a plan's grid: at every point touch the surface (as trace), run the quasi-static "
+      "indentation (2D protocol: 0.5 -> 3 A by 0.01 A every 25 ms, 3 repetitions), retract. "
+      "Writes OUT_DIR/map.json after every point and OUT_DIR/points/r<row>_c<column>/ result "
+      "directories; Ctrl-C stops safely (continue with --resume). Prints the k_fd stiffness map.");
+  cmd->add_option("--rig", o->rig, "rig.json")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--plan", o->plan, "plan.json")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out-dir", o->out_dir, "Directory of the map")->capture_default_str();
+  cmd->add_flag("--resume", o->resume, "Continue the map in OUT_DIR from its first unfinished point");
+  cmd->add_option("--preset", o->preset, "Indentation protocol: 2d (25 ms, 3 reps) or 1d (100 ms, 5 reps)")
+      ->check(CLI::IsMember({"1d", "2d"}))
+      ->capture_default_str();
+  cmd->add_option("--reps", o->repetitions, "Repetitions per point (0: the preset's)")->check(CLI::NonNegativeNumber);
+  cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
+
+}
+
+}  // namespace palpctl

@@ -1,0 +1,95 @@
+// Stiffness mapping (issue 6; the paper's §V): for each point of a plan, touch the surface with a
+// guarded approach (trace.hpp), indent it with the quasi-static staircase (experiments.hpp),
+// retract, move on; then the stiffness map, the surface it was measured on, and the soft and
+// stiff lines found in it.
+//
+//   palp::MapOptions o;                                   // 2D protocol: 0.5 -> 3 A every 25 ms, x3
+//   o.cancelled = [] { return g_sigint != 0; };
+//   palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, "results/pad-map", o);
+//   palp::MapAnalysis a = palp::analyze_map(m);           // k_fd per point, soft columns, ...
+//
+// The directory (docs/result-format.md "Maps"): map.json (the plan, the settings, every point's
+// surface and stiffness, `resume_index`), written atomically after every point, and
+// points/r<row>_c<column>/, one indentation result directory per point (result.hpp). A map that
+// stopped (Ctrl-C, a crash, an error) resumes with MapOptions::resume from the first point not
+// finished: no point is lost or repeated (a point whose result directory was written but not yet
+// recorded in map.json is indented again and its directory replaced).
+//
+// At each point the probe touches with the coil floating at the ramp's start current (the
+// paper's I_c = 0.5 A, where the coil exerts no force at contact), so the ramp that follows
+// starts in contact, as the paper's protocol does; indent() zeroes the pressures with the coil at
+// 0 A first and floats it again.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "palp/experiments.hpp"
+#include "palp/trace.hpp"
+
+namespace palp {
+
+struct MapPoint {
+  int row = 0, column = 0;             ///< 1-based
+  TracePoint surface;                  ///< the touch (measured part; z etc. once finished)
+  bool indented = false;
+  std::string reason;                  ///< why not indented / no stiffness
+  std::optional<double> k_fd_N_per_m;  ///< the paper's Fig. 6 stiffness, (F_o(0.75) - F_o(0.25)) / 0.5 mm
+  std::string k_fd_reason;
+  std::optional<double> delta0_m, k_tangent_N_per_m;
+  std::string result_dir;              ///< relative to the map's directory ("points/r1_c1")
+};
+
+struct StiffnessMap {
+  std::string plan_name;
+  int rows = 0, columns = 0;
+  IndentationSettings settings;
+  TracedSurface surface;               ///< the touches, as a traced surface (normals once complete)
+  std::vector<MapPoint> points;        ///< row-major
+  std::size_t resume_index = 0;
+  bool complete = false;
+  std::string stopped_because;
+};
+
+struct MapProgress {
+  std::size_t done = 0, total = 0;
+  const MapPoint* last = nullptr;
+  std::string phase;                   ///< "touch", "indent", "retract"
+};
+
+struct MapOptions {
+  IndentationSettings settings = IndentationSettings::preset(IndentationPreset::two_d);
+  std::function<void(const MapProgress&)> progress;
+  std::function<bool()> cancelled;
+  bool resume = false;                 ///< continue the map in the directory
+};
+
+/// Maps plan's grid into `dir` (created; ConfigError if it holds a map and resume is off).
+/// Errors and cancellation end the map as trace_surface does (arm stopped, coil at 0 A, raised
+/// to the safe height) and return it with stopped_because.
+StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
+                      const std::filesystem::path& dir, const MapOptions& options = {});
+
+/// Reads a map directory's map.json (ConfigError "file: problem").
+StiffnessMap load_map(const std::filesystem::path& dir);
+
+/// The map's analysis: the stiffness grid and the lines (rows, columns) that stand out.
+struct MapAnalysis {
+  int rows = 0, columns = 0;
+  std::vector<std::optional<double>> k_N_per_m;  ///< row-major; absent where a point failed
+  std::vector<double> column_mean_N_per_m, row_mean_N_per_m;  ///< over the points present
+  double median_N_per_m = 0;
+  /// Columns / rows whose mean is at least `contrast` below (soft) or above (stiff) the mean of
+  /// their neighbouring columns / rows (1-based).
+  std::vector<int> soft_columns, stiff_columns, soft_rows, stiff_rows;
+  double contrast = 0.1;
+};
+
+/// k per point from the map (k_fd, or re-analysed from each point's recording when
+/// reanalyse is set, with `params`), and the soft/stiff lines at `contrast` (0.1: 10 %).
+MapAnalysis analyze_map(const StiffnessMap& map, double contrast = 0.1);
+
+}  // namespace palp

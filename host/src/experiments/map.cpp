@@ -1,0 +1,304 @@
+// map_plan: touch, indent, retract at every point of a plan; map.json after every point.
+#include "palp/map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "palp/result.hpp"
+#include "toucher.hpp"
+#include "trace_json.hpp"
+
+namespace palp {
+
+namespace {
+
+namespace rb = proto::rb;
+using detail::Toucher;
+using nlohmann::json;
+
+constexpr double kFullStrokeM = 34e-3;  // the probe's whole stroke
+
+json opt(const std::optional<double>& v, double scale) { return v ? json(*v * scale) : json(nullptr); }
+
+std::optional<double> opt_from(const json& j, const char* key, double scale) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  if (!it->is_number()) throw ConfigError(std::string("map.json: \"") + key + "\" must be a number or null");
+  return it->get<double>() * scale;
+}
+
+json map_json(const StiffnessMap& m) {
+  json pts = json::array();
+  for (const MapPoint& p : m.points)
+    pts.push_back({{"row", p.row},
+                   {"column", p.column},
+                   {"indented", p.indented},
+                   {"reason", p.reason},
+                   {"k_fd_N_per_mm", opt(p.k_fd_N_per_m, 1e-3)},
+                   {"k_fd_N_per_mm_reason", p.k_fd_reason},
+                   {"delta0_mm", opt(p.delta0_m, 1e3)},
+                   {"k_tangent_N_per_mm", opt(p.k_tangent_N_per_m, 1e-3)},
+                   {"result_dir", p.result_dir}});
+  return {{"format", "palp.map/1"},
+          {"plan", m.plan_name},
+          {"rows", m.rows},
+          {"columns", m.columns},
+          {"settings", indentation_settings_json(m.settings)},
+          {"complete", m.complete},
+          {"resume_index", m.resume_index},
+          {"stopped_because", m.stopped_because},
+          {"surface", detail::trace_to_json(m.surface)},
+          {"points", pts}};
+}
+
+class Mapper {
+ public:
+  Mapper(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const std::filesystem::path& dir,
+         const MapOptions& o)
+      : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
+        toucher_(probe, robot, rig_, o.cancelled) {
+    if (!rig.work_object)
+      throw ConfigError("the rig has no registered work object: run `palpctl touch-off` first");
+    if (!plan.work_object.empty() && plan.work_object != rig.work_object->name)
+      throw ConfigError("the plan is in work object '" + plan.work_object + "' but the rig's is '" +
+                        rig.work_object->name + "'");
+    o.settings.validate();
+    wo_ = detail::transform_of(rig.work_object->pose);
+    wo_inv_ = rb::inverse(wo_);
+  }
+
+  StiffnessMap run() {
+    const std::filesystem::path file = dir_ / "map.json";
+    StiffnessMap m;
+    if (o_.resume) {
+      m = load_map(dir_);
+      if (m.rows != plan_.grid.rows || m.columns != plan_.grid.columns)
+        throw ConfigError((file).string() + ": a " + std::to_string(m.rows) + " x " + std::to_string(m.columns) +
+                          " map, the plan is " + std::to_string(plan_.grid.rows) + " x " +
+                          std::to_string(plan_.grid.columns));
+    } else {
+      if (std::filesystem::exists(file))
+        throw ConfigError(file.string() + " exists: resume it, or map into another directory");
+      std::filesystem::create_directories(dir_ / "points");
+    }
+    m.plan_name = plan_.name;
+    m.rows = plan_.grid.rows;
+    m.columns = plan_.grid.columns;
+    m.settings = o_.settings;
+    m.surface.plan_name = plan_.name;
+    m.surface.rows = m.rows;
+    m.surface.columns = m.columns;
+    m.surface.work_object = rig_.work_object->pose;
+    m.surface.tip_radius_m = rig_.tip_radius_m;
+    m.surface.contact_E_star_Pa = plan_.contact_E_star_Pa;
+    m.complete = false;
+    m.stopped_because.clear();
+    const std::size_t total = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
+    try {
+      toucher_.check_cancelled();
+      rise_to(rig_.safe_height_m + kFullStrokeM);
+      for (std::size_t k = m.resume_index; k < total; ++k) {
+        toucher_.check_cancelled();
+        const int row = static_cast<int>(k) / m.columns + 1, column = static_cast<int>(k) % m.columns + 1;
+        MapPoint p = map_point(row, column);
+        m.points.push_back(p);
+        m.surface.points.push_back(p.surface);
+        m.surface.resume_index = m.resume_index = k + 1;
+        detail::write_json_atomically(file, map_json(m));
+        if (o_.progress) o_.progress(MapProgress{m.resume_index, total, &m.points.back(), "done"});
+      }
+      m.complete = m.surface.complete = true;
+    } catch (const Toucher::Cancelled&) {
+      m.stopped_because = "cancelled";
+      make_safe();
+    } catch (const std::exception& e) {
+      m.stopped_because = e.what();
+      make_safe();
+    }
+    finish_surface(m.surface);
+    for (std::size_t k = 0; k < m.points.size(); ++k) m.points[k].surface = m.surface.points[k];
+    detail::write_json_atomically(file, map_json(m));
+    return m;
+  }
+
+ private:
+  /// The touch floats the coil at the ramp's start current (I_c), so the ramp starts in contact.
+  static Rig touch_rig(Rig r, const IndentationSettings& s) {
+    r.watch_current_A = s.start_A;
+    return r;
+  }
+
+  Pose tcp_at(double x, double y, double z) const {
+    rb::Transform t;
+    t.r = wo_.r;
+    const double p[3] = {x, y, z};
+    rb::apply(wo_, p, t.t);
+    return detail::pose_of(t);
+  }
+
+  void rise_to(double clearance) {
+    const Pose now = robot_.pose();
+    const double b[3] = {now.x_m, now.y_m, now.z_m};
+    double w[3];
+    rb::apply(wo_inv_, b, w);
+    if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
+  }
+
+  void make_safe() {
+    toucher_.make_safe();
+    try {
+      rise_to(rig_.safe_height_m + kFullStrokeM);
+    } catch (const std::exception&) {
+    }
+  }
+
+  MapPoint map_point(int row, int column) {
+    MapPoint p;
+    p.row = row;
+    p.column = column;
+    // float the coil where the arm is (raised by the previous point's back-off, or at the start
+    // by a whole stroke), then go above the point with the floating tip at the safe height
+    toucher_.prepare();
+    const double clearance = rig_.safe_height_m + toucher_.floating_stroke_m();
+    rise_to(clearance);
+    const Pose start = tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -clearance);
+    Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
+    p.surface = t.at_rest;
+    p.surface.row = row;
+    p.surface.column = column;
+    p.surface.ok = t.ok;
+    p.surface.reason = t.reason;
+    if (!t.ok) {
+      p.reason = "no surface: " + t.reason;
+      return p;
+    }
+    // the ramp: indent() zeroes the pressures with the coil at 0 A and floats it again
+    const double floating = toucher_.floating_stroke_m();
+    toucher_.release_coil();
+    toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
+    IndentationRun run = indent(probe_, o_.settings, {}, o_.cancelled);
+    if (run.interrupted) throw Toucher::Cancelled{};
+    p.result_dir = "points/r" + std::to_string(row) + "_c" + std::to_string(column);
+    write_result(dir_ / p.result_dir, run, Overwrite::yes);
+    p.indented = true;
+    if (run.analysis) {
+      const analysis::IndentationResult& a = *run.analysis;
+      p.k_fd_N_per_m = a.k_fd_N_per_m.value;
+      p.k_fd_reason = a.k_fd_N_per_m.reason;
+      p.delta0_m = a.delta0_m.value;
+      p.k_tangent_N_per_m = a.k_tangent_at_delta0_N_per_m.value;
+    } else {
+      p.k_fd_reason = run.analysis_reason;
+    }
+    // back off the surface along the tool's -z before anything moves sideways; the next touch
+    // floats the coil again
+    robot_.move_lin_rel(Pose{0, 0, -(rig_.safe_height_m + floating), 0, 0, 0}, rig_.travel_speed_m_per_s);
+    return p;
+  }
+
+  Probe& probe_;
+  Robot& robot_;
+  Rig rig_;
+  const Plan& plan_;
+  std::filesystem::path dir_;
+  const MapOptions& o_;
+  Toucher toucher_;
+  rb::Transform wo_, wo_inv_;
+};
+
+}  // namespace
+
+StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
+                      const std::filesystem::path& dir, const MapOptions& options) {
+  return Mapper(probe, robot, rig, plan, dir, options).run();
+}
+
+StiffnessMap load_map(const std::filesystem::path& dir) {
+  const std::filesystem::path file = dir / "map.json";
+  const json j = detail::read_json_file(file);
+  const std::string f = file.string();
+  if (!j.is_object() || j.value("format", std::string{}) != "palp.map/1")
+    throw ConfigError(f + ": not a map (\"format\" is not \"palp.map/1\")");
+  StiffnessMap m;
+  m.plan_name = j.value("plan", std::string{});
+  m.rows = j.value("rows", 0);
+  m.columns = j.value("columns", 0);
+  m.complete = j.value("complete", false);
+  m.resume_index = j.value("resume_index", std::size_t{0});
+  m.stopped_because = j.value("stopped_because", std::string{});
+  m.surface = detail::trace_from_json(j.value("surface", json()), f + ": surface");
+  const auto pts = j.find("points");
+  if (pts == j.end() || !pts->is_array()) throw ConfigError(f + ": \"points\" must be an array");
+  for (std::size_t k = 0; k < pts->size(); ++k) {
+    const json& q = (*pts)[k];
+    if (!q.is_object()) throw ConfigError(f + ": points[" + std::to_string(k) + "] must be an object");
+    MapPoint p;
+    p.row = q.value("row", 0);
+    p.column = q.value("column", 0);
+    p.indented = q.value("indented", false);
+    p.reason = q.value("reason", std::string{});
+    p.k_fd_N_per_m = opt_from(q, "k_fd_N_per_mm", 1e3);
+    p.k_fd_reason = q.value("k_fd_N_per_mm_reason", std::string{});
+    p.delta0_m = opt_from(q, "delta0_mm", 1e-3);
+    p.k_tangent_N_per_m = opt_from(q, "k_tangent_N_per_mm", 1e3);
+    p.result_dir = q.value("result_dir", std::string{});
+    m.points.push_back(p);
+  }
+  if (m.rows < 1 || m.columns < 1 || m.points.size() != m.resume_index ||
+      m.surface.points.size() != m.points.size() ||
+      m.points.size() > static_cast<std::size_t>(m.rows * m.columns))
+    throw ConfigError(f + ": " + std::to_string(m.points.size()) + " points, resume_index " +
+                      std::to_string(m.resume_index) + " do not fit a " + std::to_string(m.rows) + " x " +
+                      std::to_string(m.columns) + " map");
+  for (std::size_t k = 0; k < m.points.size(); ++k) m.points[k].surface = m.surface.points[k];
+  return m;
+}
+
+MapAnalysis analyze_map(const StiffnessMap& m, double contrast) {
+  MapAnalysis a;
+  a.rows = m.rows;
+  a.columns = m.columns;
+  a.contrast = contrast;
+  a.k_N_per_m.assign(static_cast<std::size_t>(m.rows * m.columns), std::nullopt);
+  for (const MapPoint& p : m.points)
+    if (p.row >= 1 && p.row <= m.rows && p.column >= 1 && p.column <= m.columns)
+      a.k_N_per_m[static_cast<std::size_t>((p.row - 1) * m.columns + p.column - 1)] = p.k_fd_N_per_m;
+  auto mean = [&](bool by_row, int line) {
+    double s = 0;
+    int n = 0;
+    const int count = by_row ? m.columns : m.rows;
+    for (int q = 1; q <= count; ++q) {
+      const int r = by_row ? line : q, c = by_row ? q : line;
+      const auto& k = a.k_N_per_m[static_cast<std::size_t>((r - 1) * m.columns + c - 1)];
+      if (k) s += *k, ++n;
+    }
+    return n > 0 ? s / n : std::nan("");
+  };
+  for (int c = 1; c <= m.columns; ++c) a.column_mean_N_per_m.push_back(mean(false, c));
+  for (int r = 1; r <= m.rows; ++r) a.row_mean_N_per_m.push_back(mean(true, r));
+  std::vector<double> all;
+  for (const auto& k : a.k_N_per_m)
+    if (k) all.push_back(*k);
+  if (!all.empty()) {
+    std::nth_element(all.begin(), all.begin() + static_cast<long>(all.size() / 2), all.end());
+    a.median_N_per_m = all[all.size() / 2];
+  }
+  // a line stands out against the mean of its neighbouring lines (one on each side inside)
+  auto flag = [&](const std::vector<double>& v, std::vector<int>& soft, std::vector<int>& stiff) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      double s = 0;
+      int n = 0;
+      if (i > 0 && std::isfinite(v[i - 1])) s += v[i - 1], ++n;
+      if (i + 1 < v.size() && std::isfinite(v[i + 1])) s += v[i + 1], ++n;
+      if (n == 0 || !std::isfinite(v[i])) continue;
+      const double ref = s / n;
+      if (v[i] <= (1 - contrast) * ref) soft.push_back(static_cast<int>(i) + 1);
+      if (v[i] >= (1 + contrast) * ref) stiff.push_back(static_cast<int>(i) + 1);
+    }
+  };
+  flag(a.column_mean_N_per_m, a.soft_columns, a.stiff_columns);
+  flag(a.row_mean_N_per_m, a.soft_rows, a.stiff_rows);
+  return a;
+}
+
+}  // namespace palp
