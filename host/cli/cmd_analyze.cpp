@@ -532,7 +532,7 @@ void add_analyze_command(CLI::App& app, Context& ctx) {
   add_indentation_options(map, *mp);
   map->get_option("--input")->description("The map's directory (map.json, points/r<row>_c<column>/)");
   map->add_option("--contrast", *mc, "A line is soft (stiff) when its mean is this fraction below (above) "
-                                     "its neighbours' mean")
+                                     "the median line's")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   map->callback([&ctx, mp, mc] {

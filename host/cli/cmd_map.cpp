@@ -67,7 +67,7 @@ void print_map(const palp::StiffnessMap& m, const palp::MapAnalysis& a) {
     for (int x : v) s += (s.empty() ? "" : ", ") + std::to_string(x);
     return s.empty() ? std::string("none") : s;
   };
-  std::printf("soft columns (>= %.0f %% below their neighbours): %s\n", 100 * a.contrast, list(a.soft_columns).c_str());
+  std::printf("soft columns (>= %.0f %% below the median column): %s\n", 100 * a.contrast, list(a.soft_columns).c_str());
   std::printf("soft rows: %s; stiff columns: %s; stiff rows: %s\n", list(a.soft_rows).c_str(),
               list(a.stiff_columns).c_str(), list(a.stiff_rows).c_str());
 }
@@ -86,7 +86,7 @@ int map(const Context& ctx, const MapCli& o) {
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
-  Progress progress("map", static_cast<std::uint64_t>(plan.point_count()), !ctx.json);
+  Progress progress("map", static_cast<std::uint64_t>(plan.point_count()), !ctx.json, "points");
   options.progress = [&](const palp::MapProgress& p) { progress.update(p.done); };
   const palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, o.out_dir, options);
   progress.finish(m.resume_index);
@@ -117,7 +117,7 @@ int map(const Context& ctx, const MapCli& o) {
 int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
                         double contrast) {
   palp::StiffnessMap m = palp::load_map(dir);
-  Progress progress("analyze map", m.points.size(), !ctx.json);
+  Progress progress("analyze map", m.points.size(), !ctx.json, "points");
   std::size_t done = 0;
   for (palp::MapPoint& p : m.points) {
     progress.update(done++);

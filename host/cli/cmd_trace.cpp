@@ -51,7 +51,7 @@ int trace(const Context& ctx, const TraceCli& o) {
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
   const bool show = !ctx.json;
-  Progress progress("trace", static_cast<std::uint64_t>(plan.grid.rows * plan.grid.columns), show);
+  Progress progress("trace", static_cast<std::uint64_t>(plan.grid.rows * plan.grid.columns), show, "points");
   options.progress = [&](const palp::TraceProgress& p) {
     palp::save_trace(file, *p.surface);  // after every point: a crash loses at most the current one
     progress.update(p.done);

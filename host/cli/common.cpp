@@ -252,8 +252,9 @@ void print_text(const json& j, int indent) {
   }
 }
 
-Progress::Progress(std::string label, std::uint64_t expected, bool enabled)
-    : label_(std::move(label)), expected_(expected), enabled_(enabled), tty_(::isatty(2) != 0) {}
+Progress::Progress(std::string label, std::uint64_t expected, bool enabled, std::string what)
+    : label_(std::move(label)), what_(std::move(what)), expected_(expected), enabled_(enabled),
+      tty_(::isatty(2) != 0) {}
 
 void Progress::update(std::uint64_t done) {
   if (!enabled_) return;
@@ -265,9 +266,9 @@ void Progress::update(std::uint64_t done) {
   const double pct = expected_ > 0 ? std::min(100.0, 100.0 * static_cast<double>(done) /
                                                          static_cast<double>(expected_))
                                    : 0.0;
-  std::fprintf(stderr, "%s%s: %3.0f%% (%llu/%llu samples)%s", tty_ ? "\r" : "", label_.c_str(),
-               pct, static_cast<unsigned long long>(done),
-               static_cast<unsigned long long>(expected_), tty_ ? "" : "\n");
+  std::fprintf(stderr, "%s%s: %3.0f%% (%llu/%llu %s)%s", tty_ ? "\r" : "", label_.c_str(), pct,
+               static_cast<unsigned long long>(done), static_cast<unsigned long long>(expected_),
+               what_.c_str(), tty_ ? "" : "\n");
   std::fflush(stderr);
 }
 

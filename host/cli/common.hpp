@@ -112,12 +112,14 @@ void print_text(const json& j, int indent = 0);
 /// "\r<label>: 42% (4200/10000 samples)" at most a few times per second; nothing when disabled.
 class Progress {
  public:
-  Progress(std::string label, std::uint64_t expected, bool enabled);
+  /// what: the unit counted ("samples", "points").
+  Progress(std::string label, std::uint64_t expected, bool enabled, std::string what = "samples");
   void update(std::uint64_t done);
   void finish(std::uint64_t done);
 
  private:
   std::string label_;
+  std::string what_;
   std::uint64_t expected_;
   bool enabled_;
   bool tty_;

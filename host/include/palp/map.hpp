@@ -82,8 +82,8 @@ struct MapAnalysis {
   std::vector<std::optional<double>> k_N_per_m;  ///< row-major; absent where a point failed
   std::vector<double> column_mean_N_per_m, row_mean_N_per_m;  ///< over the points present
   double median_N_per_m = 0;
-  /// Columns / rows whose mean is at least `contrast` below (soft) or above (stiff) the mean of
-  /// their neighbouring columns / rows (1-based).
+  /// Columns / rows whose mean is at least `contrast` below (soft) or above (stiff) the median
+  /// of all columns' / rows' means (1-based).
   std::vector<int> soft_columns, stiff_columns, soft_rows, stiff_rows;
   double contrast = 0.1;
 };

@@ -283,15 +283,18 @@ MapAnalysis analyze_map(const StiffnessMap& m, double contrast) {
     std::nth_element(all.begin(), all.begin() + static_cast<long>(all.size() / 2), all.end());
     a.median_N_per_m = all[all.size() / 2];
   }
-  // a line stands out against the mean of its neighbouring lines (one on each side inside)
+  // a line stands out against the median of all lines' means (a line next to a soft one is not
+  // "stiff" because of it)
   auto flag = [&](const std::vector<double>& v, std::vector<int>& soft, std::vector<int>& stiff) {
+    std::vector<double> finite;
+    for (double x : v)
+      if (std::isfinite(x)) finite.push_back(x);
+    if (finite.empty()) return;
+    std::sort(finite.begin(), finite.end());
+    const std::size_t h = finite.size() / 2;
+    const double ref = finite.size() % 2 == 1 ? finite[h] : 0.5 * (finite[h - 1] + finite[h]);
     for (std::size_t i = 0; i < v.size(); ++i) {
-      double s = 0;
-      int n = 0;
-      if (i > 0 && std::isfinite(v[i - 1])) s += v[i - 1], ++n;
-      if (i + 1 < v.size() && std::isfinite(v[i + 1])) s += v[i + 1], ++n;
-      if (n == 0 || !std::isfinite(v[i])) continue;
-      const double ref = s / n;
+      if (!std::isfinite(v[i])) continue;
       if (v[i] <= (1 - contrast) * ref) soft.push_back(static_cast<int>(i) + 1);
       if (v[i] >= (1 + contrast) * ref) stiff.push_back(static_cast<int>(i) + 1);
     }
