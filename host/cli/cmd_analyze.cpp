@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "palp/experiments.hpp"
 #include "palp/analysis/indentation.hpp"
 #include "palp/analysis/pressure.hpp"
 #include "palp/error.hpp"
@@ -28,6 +29,7 @@ struct AnalyzeCli {
   double kf_N_per_A = 2.918, ic_A = 0.5, kv_N_per_mm = 0.0439, tip_radius_mm = 2.5, poisson = 0.5;
   double bias_current_A = 1.0, bias_force_N = 0.0, thickness_mm = 0.0;
   bool unbonded = false;
+  bool kf_table = false;
   CLI::Option* bias_force_opt = nullptr;
   CLI::Option* thickness_opt = nullptr;
 };
@@ -89,7 +91,8 @@ json params_json(const AnalyzeCli& o, const an::IndentationParams& p) {
             {"tip_radius_mm", o.tip_radius_mm},
             {"poisson", p.poisson},
             {"bias_current_A", p.bias_current_A},
-            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)}};
+            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)},
+            {"kf_table", o.kf_table}};
   if (p.thickness) {
     j["thickness_mm"] = o.thickness_mm;
     j["bonding"] = o.unbonded ? "unbonded" : "bonded";
@@ -292,9 +295,21 @@ void print_or_json(const Context& ctx, const json& j) {
   else print_text(j);
 }
 
+/// The K_f table of the recording's sidecar into p when --kf-table asks for it.
+void kf_table_of(const AnalyzeCli& o, const Loaded& l, an::IndentationParams& p) {
+  if (!o.kf_table) return;
+  if (!l.rec.sidecar) throw palp::ConfigError(o.input + ": --kf-table needs the recording's sidecar (none found)");
+  try {
+    palp::use_kf_table_of(*l.rec.sidecar, p);
+  } catch (const palp::ConfigError& e) {
+    throw palp::ConfigError(o.input + ": " + e.what());
+  }
+}
+
 int analyze_indentation(const Context& ctx, const AnalyzeCli& o) {
-  const an::IndentationParams p = params_of(o);
+  an::IndentationParams p = params_of(o);
   const Loaded l = load(o.input, p);
+  kf_table_of(o, l, p);
   const an::IndentationResult r = an::analyze_indentation(l.curve, p);
   const an::RepetitionSummary reps = an::analyze_repetitions(l.curve, p);
   print_or_json(ctx, indentation_json(o, p, r, reps));
@@ -312,8 +327,9 @@ std::vector<std::pair<int, const std::vector<double>*>> pressure_channels(const 
 }
 
 int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
-  const an::IndentationParams p = params_of(o);
+  an::IndentationParams p = params_of(o);
   const Loaded l = load(o.input, p);
+  kf_table_of(o, l, p);
   const auto channels = pressure_channels(l, o.input);
   const an::IndentationResult r = an::analyze_indentation(l.curve, p);
   if (!r.contact_z_m)
@@ -471,6 +487,9 @@ void add_indentation_options(CLI::App* cmd, AnalyzeCli& o) {
                                     "Sample thickness for the finite-thickness correction, mm "
                                     "(default: none, a half-space)")
                         ->check(kPositive);
+  cmd->add_flag("--kf-table", o.kf_table,
+                "Use the K_f(stroke) table of the recording's calibration at each sample's stroke "
+                "position instead of the constant --kf-N-per-A (needs the sidecar's stroke origin)");
   cmd->add_flag("--unbonded", o.unbonded,
                 "The sample lies loose on its support (default: bonded); with --thickness-mm")
       ->needs(o.thickness_opt);
@@ -536,7 +555,7 @@ void add_analyze_command(CLI::App& app, Context& ctx) {
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   map->callback([&ctx, mp, mc] {
-    ctx.action = [&ctx, mp, mc] { return analyze_map_command(ctx, mp->input, params_of(*mp), *mc); };
+    ctx.action = [&ctx, mp, mc] { return analyze_map_command(ctx, mp->input, params_of(*mp), mp->kf_table, *mc); };
   });
 }
 

@@ -115,7 +115,7 @@ int map(const Context& ctx, const MapCli& o) {
 }  // namespace
 
 int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
-                        double contrast) {
+                        bool kf_table, double contrast) {
   palp::StiffnessMap m = palp::load_map(dir);
   Progress progress("analyze map", m.points.size(), !ctx.json, "points");
   std::size_t done = 0;
@@ -124,6 +124,11 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
     if (!p.indented || p.result_dir.empty()) continue;
     palp::IndentationRun run = palp::indentation_run_of(palp::load_result(std::filesystem::path(dir) / p.result_dir));
     run.settings.analysis = params;
+    if (kf_table) {
+      if (!run.recording.sidecar)
+        throw palp::ConfigError(p.result_dir + ": --kf-table needs the recording's sidecar (none found)");
+      palp::use_kf_table_of(*run.recording.sidecar, run.settings.analysis);
+    }
     palp::analyze_run(run);
     p.k_fd_N_per_m.reset();
     p.delta0_m.reset();

@@ -56,7 +56,7 @@ void add_indent_command(CLI::App& app, Context& ctx);
 void add_map_command(CLI::App& app, Context& ctx);
 /// palpctl analyze map (registered with the other analyze commands, run by cmd_map.cpp).
 int analyze_map_command(const Context& ctx, const std::string& dir,
-                        const palp::analysis::IndentationParams& params, double contrast);
+                        const palp::analysis::IndentationParams& params, bool kf_table, double contrast);
 
 /// Option checks with messages that name the option's value plainly (CLI11's own positive-number
 /// check prints its whole double range for a value that is not a number).

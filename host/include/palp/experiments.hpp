@@ -127,4 +127,10 @@ void analyze_run(IndentationRun& run);
 /// A recording's columns as the analysis' Curve (z in m, i in A, repetitions).
 analysis::Curve curve_of(const Recording& r);
 
+/// Puts the K_f(stroke) table of a recording's sidecar (its calibration's kf_table) and the
+/// stroke origin into p, so the analysis uses K_f at each sample's stroke position instead of
+/// the constant. Throws ConfigError when the sidecar gives no stroke origin (with its reason)
+/// or no table.
+void use_kf_table_of(const Sidecar& sidecar, analysis::IndentationParams& p);
+
 }  // namespace palp

@@ -55,6 +55,14 @@ void validate(const Curve& c, const IndentationParams& p) {
                         " is not finite (z_m = " + fmt(c.z_m[k]) + ", i_A = " + fmt(c.i_A[k]) +
                         "); remove or repair it before the analysis");
   }
+  const auto& tx = p.kf_table_stroke_m;
+  const auto& tk = p.kf_table_N_per_A;
+  bool table_ok = tx.size() == tk.size() && std::isfinite(p.stroke_origin_z_m);
+  for (std::size_t k = 0; table_ok && k < tx.size(); ++k)
+    table_ok = std::isfinite(tx[k]) && std::isfinite(tk[k]) && tk[k] > 0.0 && (k == 0 || tx[k] > tx[k - 1]);
+  if (!table_ok)
+    throw ConfigError("indentation parameters: the K_f table needs as many positions as values, "
+                      "positions increasing, every K_f > 0, and a finite stroke origin");
   if (!finite_params(p) || !(p.force_constant_N_per_A > 0.0) || !(p.tip_radius_m > 0.0) ||
       !(p.spring_N_per_m >= 0.0) || !(p.poisson >= 0.0 && p.poisson < 1.0) ||
       !(p.window_hi_m > p.window_lo_m) || !(p.local_half_width_m > 0.0) || p.min_points < 3 ||
@@ -65,8 +73,23 @@ void validate(const Curve& c, const IndentationParams& p) {
                       "positive thickness and force noise when given");
 }
 
+double IndentationParams::force_constant_at(double z_m) const {
+  const auto& x = kf_table_stroke_m;
+  const auto& k = kf_table_N_per_A;
+  if (x.empty()) return force_constant_N_per_A;
+  const double s = z_m - stroke_origin_z_m;
+  if (s <= x.front()) return k.front();
+  if (s >= x.back()) return k.back();
+  const auto hi = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), s) - x.begin());
+  const double w = (s - x[hi - 1]) / (x[hi] - x[hi - 1]);
+  return k[hi - 1] + w * (k[hi] - k[hi - 1]);
+}
+
 Eigen::VectorXd coil_force_N(const Curve& c, const IndentationParams& p) {
-  return p.force_constant_N_per_A * (c.i_A.array() - p.contact_current_A).matrix();
+  Eigen::VectorXd F(c.i_A.size());
+  for (Eigen::Index k = 0; k < F.size(); ++k)
+    F[k] = p.force_constant_at(c.z_m[k]) * (c.i_A[k] - p.contact_current_A);
+  return F;
 }
 
 Eigen::VectorXd object_force_N(const Curve& c, const IndentationParams& p, double contact_z_m) {
@@ -112,7 +135,7 @@ detail::FitData detail::collect_loading(const Curve& c, const IndentationParams&
   d.F_N.resize(d.z_m.size());
   for (size_t k = 0; k < idx.size(); ++k) {
     d.z_m[static_cast<Eigen::Index>(k)] = c.z_m[idx[k]];
-    d.F_N[static_cast<Eigen::Index>(k)] = p.force_constant_N_per_A * (c.i_A[idx[k]] - p.contact_current_A);
+    d.F_N[static_cast<Eigen::Index>(k)] = p.force_constant_at(c.z_m[idx[k]]) * (c.i_A[idx[k]] - p.contact_current_A);
   }
   return d;
 }

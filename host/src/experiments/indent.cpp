@@ -296,4 +296,26 @@ void analyze_run(IndentationRun& run) {
   }
 }
 
+void use_kf_table_of(const Sidecar& side, analysis::IndentationParams& p) {
+  if (!side.stroke_origin_z_mm)
+    throw ConfigError("the K_f(stroke) table needs the stroke origin, and the sidecar gives none (" +
+                      (side.stroke_origin_z_mm_reason.empty() ? std::string("no reason given")
+                                                              : side.stroke_origin_z_mm_reason) +
+                      "): analyse with the constant K_f");
+  const auto t = side.calibration.find("kf_table");
+  if (t == side.calibration.end() || !t->is_array() || t->empty())
+    throw ConfigError("the K_f(stroke) table: the sidecar's calibration has no kf_table");
+  std::vector<double> x, k;
+  for (const auto& row : *t) {
+    if (!row.is_object() || !row.contains("position_mm") || !row.contains("kf_N_per_A") ||
+        !row["position_mm"].is_number() || !row["kf_N_per_A"].is_number())
+      throw ConfigError("the K_f(stroke) table: every kf_table row needs position_mm and kf_N_per_A");
+    x.push_back(row["position_mm"].get<double>() * 1e-3);
+    k.push_back(row["kf_N_per_A"].get<double>());
+  }
+  p.kf_table_stroke_m = std::move(x);
+  p.kf_table_N_per_A = std::move(k);
+  p.stroke_origin_z_m = *side.stroke_origin_z_mm * 1e-3;
+}
+
 }  // namespace palp

@@ -52,6 +52,15 @@ struct IndentationParams {
   int min_points = 10;                     ///< fewer loading samples in contact: ConfigError
   /// The force noise floor (rms), e.g. K_f x the current noise; gives each fit a reduced chi^2.
   std::optional<double> force_noise_N;
+  /// A K_f(stroke) table instead of the constant: stroke positions from the stroke origin (m,
+  /// increasing) and K_f there (N/A), piecewise linear, constant beyond the ends. Empty: the
+  /// constant force_constant_N_per_A, the paper's analysis. Only for a recording whose stroke
+  /// position is known: stroke_origin_z_m is its z of the stroke origin (the sidecar's
+  /// stroke_origin_z_mm). F_0 stays K_f (I_0 - I_c) with the constant.
+  std::vector<double> kf_table_stroke_m, kf_table_N_per_A;
+  double stroke_origin_z_m = 0.0;
+  /// K_f at a recording's z: the table's value there, or the constant.
+  double force_constant_at(double z_m) const;
 };
 
 /// A recording: probe position and coil current per sample, optional repetition number
