@@ -98,9 +98,11 @@ struct TraceOptions {
   std::optional<TracedSurface> resume;
 };
 
-/// Traces plan's grid. Throws ConfigError for a plan the rig cannot do (no registered work
-/// object, a grid outside the workspace); errors during the plan end it as described above and
-/// are rethrown after the arm is safe only when nothing at all could be traced.
+/// Traces plan's grid. Throws ConfigError before anything moves for a plan the rig cannot do (no
+/// registered work object, another work object, a resume that belongs to another grid). Errors
+/// during the plan (a point the arm cannot reach, a lost link, a tip touching at the safe
+/// height) end it as described above: the result has complete = false and the error's text in
+/// stopped_because. A point without contact is kept with ok = false and its reason.
 TracedSurface trace_surface(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
                             const TraceOptions& options = {});
 
