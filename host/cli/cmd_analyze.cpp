@@ -13,6 +13,7 @@
 
 #include "common.hpp"
 #include "palp/experiments.hpp"
+#include "palp/result.hpp"
 #include "palp/analysis/indentation.hpp"
 #include "palp/analysis/pressure.hpp"
 #include "palp/error.hpp"
@@ -343,31 +344,10 @@ int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
   j["params"] = params_json(o, p);
   j["force"] = std::string("object force F_o = K_f (i - I_c) - k_v (z - z_c), samples at i >= I_c on "
                            "the loading branches; z_c of the ") + an::model_name(*r.chosen) + " fit";
-  j["contact_point_mm"] = pr.contact_z_m * 1e3;
-  j["n_loading"] = pr.n_loading;
-  json arr = json::array();
-  for (std::size_t c = 0; c < pr.channels.size(); ++c) {
-    const an::ChannelPressure& cp = pr.channels[c];
-    json ch = {{"channel", channels[c].first}};
-    put(ch, "slope_Pa_per_N", cp.fit.slope, 1.0);
-    put(ch, "slope_Pa_per_N_se", cp.fit.slope_se, 1.0);
-    put(ch, "intercept_Pa", cp.fit.intercept, 1.0);
-    put(ch, "r2", cp.fit.r2, 1.0);
-    put(ch, "rise_Pa", cp.rise_Pa, 1.0);
-    put(ch, "rise_Pa_sd", cp.rise_sd_Pa, 1.0);
-    put(ch, "hysteresis_ratio", cp.hysteresis_ratio_mean, 1.0);
-    json per = json::array();
-    for (const auto& h : cp.hysteresis) {
-      json e = json::object();
-      put(e, "loop_area_Pa_N", h.loop_area_Pa_N, 1.0);
-      put(e, "ratio", h.ratio, 1.0);
-      put(e, "max_gap_Pa", h.max_gap_Pa, 1.0);
-      per.push_back(e);
-    }
-    ch["hysteresis_per_rep"] = per;
-    arr.push_back(ch);
-  }
-  j["channels"] = arr;
+  // the SDK's summary (what palpctl indent writes); its channel numbers are the matrix columns,
+  // here the recording's channels that are present
+  j.update(palp::pressure_summary_json(pr));
+  for (std::size_t c = 0; c < channels.size(); ++c) j["channels"][c]["channel"] = channels[c].first;
   if (ctx.json) {
     print_json(j);
     return kOk;
@@ -376,7 +356,7 @@ int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
   std::printf("%s: contact point %s mm (%s fit), %d loading samples at i_A >= I_c\n", o.input.c_str(),
               fmt(pr.contact_z_m * 1e3).c_str(), an::model_name(*r.chosen), pr.n_loading);
   std::printf("channel  slope_Pa_per_N          r2     rise_Pa  hysteresis_ratio\n");
-  for (const auto& ch : arr)
+  for (const auto& ch : j["channels"])
     std::printf("%7d  %14s  %10s  %10s  %16s\n", ch["channel"].get<int>(), cell(ch["slope_Pa_per_N"]).c_str(),
                 cell(ch["r2"]).c_str(), cell(ch["rise_Pa"]).c_str(), cell(ch["hysteresis_ratio"]).c_str());
   return kOk;

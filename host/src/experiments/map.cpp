@@ -12,11 +12,8 @@ namespace palp {
 
 namespace {
 
-namespace rb = proto::rb;
 using detail::Toucher;
 using nlohmann::json;
-
-constexpr double kFullStrokeM = 34e-3;  // the probe's whole stroke
 
 json opt(const std::optional<double>& v, double scale) { return v ? json(*v * scale) : json(nullptr); }
 
@@ -63,8 +60,7 @@ class Mapper {
       throw ConfigError("the plan is in work object '" + plan.work_object + "' but the rig's is '" +
                         rig.work_object->name + "'");
     o.settings.validate();
-    wo_ = detail::transform_of(rig.work_object->pose);
-    wo_inv_ = rb::inverse(wo_);
+    toucher_.set_work_object(rig.work_object->pose);
   }
 
   StiffnessMap run() {
@@ -96,7 +92,7 @@ class Mapper {
     const std::size_t total = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
     try {
       toucher_.check_cancelled();
-      rise_to(rig_.safe_height_m + kFullStrokeM);
+      toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);
       for (std::size_t k = m.resume_index; k < total; ++k) {
         toucher_.check_cancelled();
         const int row = static_cast<int>(k) / m.columns + 1, column = static_cast<int>(k) % m.columns + 1;
@@ -110,10 +106,10 @@ class Mapper {
       m.complete = m.surface.complete = true;
     } catch (const Toucher::Cancelled&) {
       m.stopped_because = "cancelled";
-      make_safe();
+      toucher_.make_safe_and_raise();
     } catch (const std::exception& e) {
       m.stopped_because = e.what();
-      make_safe();
+      toucher_.make_safe_and_raise();
     }
     finish_surface(m.surface);
     for (std::size_t k = 0; k < m.points.size(); ++k) m.points[k].surface = m.surface.points[k];
@@ -128,30 +124,6 @@ class Mapper {
     return r;
   }
 
-  Pose tcp_at(double x, double y, double z) const {
-    rb::Transform t;
-    t.r = wo_.r;
-    const double p[3] = {x, y, z};
-    rb::apply(wo_, p, t.t);
-    return detail::pose_of(t);
-  }
-
-  void rise_to(double clearance) {
-    const Pose now = robot_.pose();
-    const double b[3] = {now.x_m, now.y_m, now.z_m};
-    double w[3];
-    rb::apply(wo_inv_, b, w);
-    if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
-  }
-
-  void make_safe() {
-    toucher_.make_safe();
-    try {
-      rise_to(rig_.safe_height_m + kFullStrokeM);
-    } catch (const std::exception&) {
-    }
-  }
-
   MapPoint map_point(int row, int column) {
     MapPoint p;
     p.row = row;
@@ -160,8 +132,8 @@ class Mapper {
     // by a whole stroke), then go above the point with the floating tip at the safe height
     toucher_.prepare();
     const double clearance = rig_.safe_height_m + toucher_.floating_stroke_m();
-    rise_to(clearance);
-    const Pose start = tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -clearance);
+    toucher_.rise_to(clearance);
+    const Pose start = toucher_.tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -clearance);
     Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
     p.surface = t.at_rest;
     p.surface.row = row;
@@ -203,7 +175,6 @@ class Mapper {
   std::filesystem::path dir_;
   const MapOptions& o_;
   Toucher toucher_;
-  rb::Transform wo_, wo_inv_;
 };
 
 }  // namespace

@@ -134,6 +134,35 @@ void Toucher::release_coil() {
   floating_ = false;
 }
 
+void Toucher::set_work_object(const Pose& work_object) {
+  wo_ = transform_of(work_object);
+  wo_inv_ = rb::inverse(wo_);
+}
+
+Pose Toucher::tcp_at(double x, double y, double z) const {
+  rb::Transform t;
+  t.r = wo_.r;
+  const double p[3] = {x, y, z};
+  rb::apply(wo_, p, t.t);
+  return pose_of(t);
+}
+
+void Toucher::rise_to(double clearance) {
+  const Pose now = robot_.pose();
+  const double b[3] = {now.x_m, now.y_m, now.z_m};
+  double w[3];
+  rb::apply(wo_inv_, b, w);
+  if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
+}
+
+void Toucher::make_safe_and_raise() {
+  make_safe();
+  try {
+    rise_to(rig_.safe_height_m + kFullStrokeM);
+  } catch (const std::exception&) {
+  }
+}
+
 void Toucher::make_safe() {
   try { robot_.stop(); } catch (const std::exception&) {}
   try { release_coil(); } catch (const std::exception&) {}

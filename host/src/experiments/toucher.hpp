@@ -15,6 +15,9 @@ Pose pose_of(const proto::rb::Transform& t);
 /// A measured point as the surface analysis takes it (base frame; the tool's z is the axis).
 analysis::ApproachAtRest approach_at_rest(const TracePoint& measured);
 
+/// The probe's whole stroke: the tip never reaches further ahead of the TCP.
+inline constexpr double kFullStrokeM = 34e-3;
+
 class Toucher {
  public:
   struct Cancelled {};
@@ -42,6 +45,15 @@ class Toucher {
   /// Waits this much device time (virtual time in palp-sim).
   void wait_device(double dt_s);
 
+  // --- in a work object (trace, map) ---------------------------------------------------------
+  void set_work_object(const Pose& work_object);
+  /// The TCP over work-object point (x, y, z) with the tool's z along the work object's z.
+  Pose tcp_at(double x, double y, double z) const;
+  /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0.
+  void rise_to(double clearance_m);
+  /// make_safe(), then up until the tip is clear of the safe height even at full stroke.
+  void make_safe_and_raise();
+
  private:
   struct Approach;
   Approach approach(double speed, double travel_m);
@@ -54,6 +66,7 @@ class Toucher {
   std::function<bool()> cancelled_;
   bool floating_ = false;
   double floating_stroke_m_ = 0.0;
+  proto::rb::Transform wo_, wo_inv_;  // the work object (identity until set)
 };
 
 }  // namespace palp::detail

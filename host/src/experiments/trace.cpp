@@ -11,22 +11,18 @@ namespace palp {
 
 namespace {
 
-namespace rb = proto::rb;
 using detail::Toucher;
-
-constexpr double kFullStrokeM = 34e-3;  // the probe's whole stroke: the tip never reaches beyond
 
 class Tracer {
  public:
   Tracer(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const TraceOptions& o)
-      : rig_(rig), plan_(plan), o_(o), robot_(robot), toucher_(probe, robot, rig, o.cancelled) {
+      : rig_(rig), plan_(plan), o_(o), toucher_(probe, robot, rig, o.cancelled) {
     if (!rig.work_object)
       throw ConfigError("the rig has no registered work object: run `palpctl touch-off` first");
     if (!plan.work_object.empty() && plan.work_object != rig.work_object->name)
       throw ConfigError("the plan is in work object '" + plan.work_object + "' but the rig's is '" +
                         rig.work_object->name + "': touch off '" + plan.work_object + "' first");
-    wo_ = detail::transform_of(rig.work_object->pose);
-    wo_inv_ = rb::inverse(wo_);
+    toucher_.set_work_object(rig.work_object->pose);
   }
 
   TracedSurface run() {
@@ -48,7 +44,7 @@ class Tracer {
     s.stopped_because.clear();
     try {
       toucher_.check_cancelled();
-      rise_to(rig_.safe_height_m + kFullStrokeM);  // whatever the coil does, the tip is clear
+      toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);  // whatever the coil does, the tip is clear
       toucher_.prepare();
       for (std::size_t k = s.resume_index; k < total; ++k) {
         toucher_.check_cancelled();
@@ -56,17 +52,17 @@ class Tracer {
         const int column = static_cast<int>(k) % s.columns + 1;
         s.points.push_back(trace_point(row, column));
         s.resume_index = k + 1;
-        rise_to(tip_clearance());
+        toucher_.rise_to(tip_clearance());
         if (o_.progress) o_.progress(TraceProgress{s.resume_index, total, &s.points.back(), &s});
       }
       toucher_.release_coil();
       s.complete = true;
     } catch (const Toucher::Cancelled&) {
       s.stopped_because = "cancelled";
-      make_safe();
+      toucher_.make_safe_and_raise();
     } catch (const std::exception& e) {
       s.stopped_because = e.what();
-      make_safe();
+      toucher_.make_safe_and_raise();
     }
     finish_surface(s);
     return s;
@@ -76,35 +72,8 @@ class Tracer {
   /// TCP height (work-object z, negative above) that puts the floating tip at the safe height.
   double tip_clearance() const { return rig_.safe_height_m + toucher_.floating_stroke_m(); }
 
-  Pose tcp_at(double x, double y, double z) const {
-    rb::Transform t;
-    t.r = wo_.r;
-    const double p[3] = {x, y, z};
-    rb::apply(wo_, p, t.t);
-    return detail::pose_of(t);
-  }
-
-  void to_wo(const double base[3], double out[3]) const { rb::apply(wo_inv_, base, out); }
-
-  /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0.
-  void rise_to(double clearance) {
-    const Pose now = robot_.pose();
-    const double b[3] = {now.x_m, now.y_m, now.z_m};
-    double w[3];
-    to_wo(b, w);
-    if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
-  }
-
-  void make_safe() {
-    toucher_.make_safe();
-    try {
-      rise_to(rig_.safe_height_m + kFullStrokeM);
-    } catch (const std::exception&) {
-    }
-  }
-
   TracePoint trace_point(int row, int column) {
-    const Pose start = tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -tip_clearance());
+    const Pose start = toucher_.tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -tip_clearance());
     Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
     TracePoint pt = t.at_rest;
     pt.row = row;
@@ -117,9 +86,7 @@ class Tracer {
   const Rig& rig_;
   const Plan& plan_;
   const TraceOptions& o_;
-  Robot& robot_;
   Toucher toucher_;
-  rb::Transform wo_, wo_inv_;
 };
 
 }  // namespace
