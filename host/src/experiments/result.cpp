@@ -1,18 +1,11 @@
 // Result directories (result.hpp): written into a hidden sibling directory, flushed, renamed
 // into place; read back with errors that name the file.
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <chrono>
-#include <cstring>
-#include <ctime>
 #include <fstream>
 #include <sstream>
 
 #include "palp/error.hpp"
 #include "palp/result.hpp"
+#include "result_dir.hpp"
 
 namespace palp {
 
@@ -23,47 +16,6 @@ namespace {
 
 constexpr const char* kIndentationStem = "indentation";
 
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-fs::path sibling(const fs::path& dir, const char* what) {
-  static std::atomic<unsigned> counter{0};
-  return dir.parent_path() / ("." + dir.filename().string() + "." + what + "-" +
-                              std::to_string(::getpid()) + "-" + std::to_string(counter++));
-}
-
-void fsync_path(const fs::path& p, bool directory) {
-  const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
-  if (fd < 0) return;  // best effort: the rename below is what makes the result visible
-  ::fsync(fd);
-  ::close(fd);
-}
-
-void write_file(const fs::path& p, const std::string& text) {
-  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw RecordingError(p.string(), 0, std::string("cannot create: ") + std::strerror(errno));
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      ::close(fd);
-      throw RecordingError(p.string(), 0, std::string("cannot write: ") + std::strerror(e));
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  const bool synced = ::fsync(fd) == 0;
-  const int e = errno;
-  ::close(fd);
-  if (!synced) throw RecordingError(p.string(), 0, std::string("cannot flush: ") + std::strerror(e));
-}
 
 json run_summary(const IndentationRun& run) {
   const char* end = proto::enum_name(run.program.end);
@@ -127,28 +79,10 @@ fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwri
     summary["pressure_reason"] = run.pressure_reason.empty() ? "not analysed" : run.pressure_reason;
   }
 
-  const fs::path tmp = sibling(dir, "tmp");
-  try {
-    fs::create_directory(tmp);
+  write_result_directory(dir, overwrite, [&](const fs::path& tmp) {
     write_recording(tmp / kIndentationStem, run.recording);
-    write_file(tmp / kResultFile, summary.dump(2) + "\n");
-    fsync_path(tmp, true);
-    if (fs::exists(dir)) {  // Overwrite::yes: move the old one aside, then delete it
-      const fs::path old = sibling(dir, "old");
-      fs::rename(dir, old);
-      fs::rename(tmp, dir);
-      fs::remove_all(old, ec);
-    } else {
-      fs::rename(tmp, dir);
-    }
-    fsync_path(dir.parent_path(), true);
-  } catch (const fs::filesystem_error& e) {
-    fs::remove_all(tmp, ec);
-    throw RecordingError(dir.string(), 0, std::string("cannot write the result: ") + e.code().message());
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    throw;
-  }
+    write_text_file(tmp / kResultFile, summary.dump(2) + "\n");
+  });
   return dir;
 }
 

@@ -1,0 +1,93 @@
+// The atomic result directory (result_dir.hpp).
+#include "result_dir.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+
+#include "palp/error.hpp"
+
+namespace palp {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path sibling(const fs::path& dir, const char* what) {
+  static std::atomic<unsigned> counter{0};
+  return dir.parent_path() / ("." + dir.filename().string() + "." + what + "-" +
+                              std::to_string(::getpid()) + "-" + std::to_string(counter++));
+}
+
+void fsync_path(const fs::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+  if (fd < 0) return;  // best effort: the rename below is what makes the result visible
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+void write_text_file(const fs::path& p, const std::string& text) {
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw RecordingError(p.string(), 0, std::string("cannot create: ") + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      ::close(fd);
+      throw RecordingError(p.string(), 0, std::string("cannot write: ") + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  const int e = errno;
+  ::close(fd);
+  if (!synced) throw RecordingError(p.string(), 0, std::string("cannot flush: ") + std::strerror(e));
+}
+
+void write_result_directory(const fs::path& dir, Overwrite overwrite,
+                            const std::function<void(const fs::path& tmp)>& fill) {
+  std::error_code ec;
+  const fs::path tmp = sibling(dir, "tmp");
+  try {
+    fs::create_directory(tmp);
+    fill(tmp);
+    fsync_path(tmp, true);
+    if (fs::exists(dir)) {
+      if (overwrite == Overwrite::no)
+        throw RecordingError(dir.string(), 0, "appeared while the result was written; not replaced");
+      const fs::path old = sibling(dir, "old");
+      fs::rename(dir, old);
+      fs::rename(tmp, dir);
+      fs::remove_all(old, ec);
+    } else {
+      fs::rename(tmp, dir);
+    }
+    fsync_path(dir.parent_path(), true);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(tmp, ec);
+    throw RecordingError(dir.string(), 0, std::string("cannot write the result: ") + e.code().message());
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace palp
