@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "palp/fw/program_schedule.hpp"
+#include "palp/protocol/program_schedule.hpp"
 #include "palp/fw/programs.hpp"
 #include "program_test_support.hpp"
 
@@ -103,10 +103,10 @@ TEST(ProgramValidation, RampStepThatCannotReachStopIsStepA) {
   m.step_A = 3.0f;  // 0.5 + 3 > 3
   EXPECT_EQ(refused_field(m), 2u);
   m.step_A = 2.5f;  // exactly reaches stop: two levels
-  EXPECT_EQ(ramp_timing(m, kRate).levels, 2u);
+  EXPECT_EQ(proto::ramp_timing(m, kRate).levels, 2u);
   loaded(m);
   m.stop_A = m.start_A;  // a one-level ramp is fine
-  EXPECT_EQ(ramp_timing(m, kRate).levels, 1u);
+  EXPECT_EQ(proto::ramp_timing(m, kRate).levels, 1u);
   loaded(m);
 }
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "palp/fw/program_schedule.hpp"
+#include "palp/protocol/program_schedule.hpp"
 #include "palp/fw/programs.hpp"
 #include "palp/fw/waveform.hpp"
 #include "program_test_support.hpp"
@@ -31,7 +31,7 @@ float level_A(const proto::LoadRamp& m, std::uint32_t level) {
 // ---- ramp -------------------------------------------------------------------------------------
 
 TEST(ProgramRamp, PaperRampHas251LevelsEndingExactlyOnStop) {
-  const RampTiming t = ramp_timing(paper_2d_ramp(), kRate);
+  const proto::RampTiming t = proto::ramp_timing(paper_2d_ramp(), kRate);
   EXPECT_EQ(t.levels, 251u);
   EXPECT_EQ(t.stairs_per_rep, 501u);
   EXPECT_EQ(t.dwell_ticks, 500u);
@@ -41,35 +41,35 @@ TEST(ProgramRamp, PaperRampHas251LevelsEndingExactlyOnStop) {
   // off the grid, stop_A is not reached: 0.5 -> 3 by 0.3 = 0.5, 0.8, ..., 2.9
   proto::LoadRamp off = paper_2d_ramp();
   off.step_A = 0.3f;
-  EXPECT_EQ(ramp_timing(off, kRate).levels, 9u);
+  EXPECT_EQ(proto::ramp_timing(off, kRate).levels, 9u);
   // the 1D ramp of §IV-A at 40 kHz: 100 ms dwell
   proto::LoadRamp one_d = paper_2d_ramp();
   one_d.dwell_s = 0.1f;
   one_d.unload = 0;
-  EXPECT_EQ(ramp_timing(one_d, 40000).dwell_ticks, 4000u);
-  EXPECT_EQ(ramp_timing(one_d, 40000).ticks_per_rep, 251u * 4000u);
+  EXPECT_EQ(proto::ramp_timing(one_d, 40000).dwell_ticks, 4000u);
+  EXPECT_EQ(proto::ramp_timing(one_d, 40000).ticks_per_rep, 251u * 4000u);
 }
 
 TEST(ProgramRamp, EveryTickOfThreeRepetitionsIsOnItsScheduledLevelAndTheEndIsExact) {
   const proto::LoadRamp m = paper_2d_ramp();
-  const RampTiming t = ramp_timing(m, kRate);
+  const proto::RampTiming t = proto::ramp_timing(m, kRate);
   ProgramRunner r = loaded(m);
   ASSERT_EQ(r.start(kT0, 0), ErrorCode::ok);
   for (std::uint64_t k = 0; k < t.total_ticks; ++k) {
     const ProgramStep s = r.step(kT0 + k, 0);
-    const std::uint32_t level = ramp_level_at(t, k);
+    const std::uint32_t level = proto::ramp_level_at(t, k);
     ASSERT_TRUE(s.running) << k;
     ASSERT_NEAR(s.current_A, level_A(m, level), 1e-6f) << "tick " << k;
     ASSERT_EQ(s.repetition, k / t.ticks_per_rep) << k;
     ASSERT_EQ(s.step, (k % t.ticks_per_rep) / t.dwell_ticks) << k;
   }
   // spot checks of the schedule itself
-  EXPECT_EQ(ramp_level_at(t, 0), 0u);
-  EXPECT_EQ(ramp_level_at(t, 250 * 500), 250u);        // the top, held once
-  EXPECT_EQ(ramp_level_at(t, 251 * 500 - 1), 250u);
-  EXPECT_EQ(ramp_level_at(t, 251 * 500), 249u);        // the unload starts
-  EXPECT_EQ(ramp_level_at(t, 501 * 500 - 1), 0u);      // end of repetition 0 ...
-  EXPECT_EQ(ramp_level_at(t, 501 * 500), 0u);          // ... start of repetition 1
+  EXPECT_EQ(proto::ramp_level_at(t, 0), 0u);
+  EXPECT_EQ(proto::ramp_level_at(t, 250 * 500), 250u);        // the top, held once
+  EXPECT_EQ(proto::ramp_level_at(t, 251 * 500 - 1), 250u);
+  EXPECT_EQ(proto::ramp_level_at(t, 251 * 500), 249u);        // the unload starts
+  EXPECT_EQ(proto::ramp_level_at(t, 501 * 500 - 1), 0u);      // end of repetition 0 ...
+  EXPECT_EQ(proto::ramp_level_at(t, 501 * 500), 0u);          // ... start of repetition 1
   const ProgramStep end = r.step(kT0 + t.total_ticks, 0);
   EXPECT_TRUE(end.finished);
   EXPECT_FALSE(end.running);
@@ -186,7 +186,7 @@ TEST(ProgramHold, HoldsTheCurrentForExactlyTheDurationInTicks) {
   EXPECT_EQ(end.end, ProgramEnd::completed);
   EXPECT_EQ(end.current_A, 0.0f);
   EXPECT_EQ(r.step(kT0 + 2001, 0).current_A, 0.0f);
-  EXPECT_EQ(ticks_from_seconds(1e-7f, kRate), 1u);  // a positive duration is at least a tick
+  EXPECT_EQ(proto::ticks_from_seconds(1e-7f, kRate), 1u);  // a positive duration is at least a tick
 }
 
 TEST(ProgramHold, ZeroDurationHoldsUntilStoppedThenZeroAtOnce) {
@@ -210,7 +210,7 @@ TEST(ProgramHold, ZeroDurationHoldsUntilStoppedThenZeroAtOnce) {
 TEST(ProgramSine, ValuesAtKnownTicksMatchTheSineWithinTheTableError) {
   ProgramRunner r = loaded(sine_5Hz(0));
   r.start(kT0, 0);
-  const std::uint32_t inc = phase_increment(5.0f, kRate);
+  const std::uint32_t inc = proto::phase_increment(5.0f, kRate);
   for (std::uint64_t k = 0; k < 40000; ++k) {
     const float i = r.step(kT0 + k, 0).current_A;
     const double turns = static_cast<double>((k * inc) % (1ull << 32)) / 4294967296.0;
@@ -231,7 +231,7 @@ TEST(ProgramSine, ValuesAtKnownTicksMatchTheSineWithinTheTableError) {
 TEST(ProgramSine, RunsWholeCyclesAndEndsOnTheTickTheLastCycleCompletes) {
   ProgramRunner r = loaded(sine_5Hz(3));
   r.start(kT0, 0);
-  const std::uint64_t ticks = ticks_for_cycles(3, phase_increment(5.0f, kRate));
+  const std::uint64_t ticks = proto::ticks_for_cycles(3, proto::phase_increment(5.0f, kRate));
   EXPECT_EQ(ticks, 12000u);  // 3 cycles of 4000 ticks (the realised frequency is a hair higher)
   for (std::uint64_t k = 0; k < ticks; ++k) {
     const ProgramStep s = r.step(kT0 + k, 0);
@@ -254,13 +254,14 @@ proto::LoadSweep paper_sweep() {  // §IV-B: 1 A + 0.1 A, 2 ... 20 Hz by 0.05 Hz
 // Runs a sweep tick by tick and checks each line's first tick, settle end and output at its
 // first tick (phase 0) against the schedule; returns the total ticks.
 std::uint64_t run_sweep_against_schedule(const proto::LoadSweep& m, std::uint32_t rate) {
-  const SweepPlan p = sweep_plan(m, rate);
+  const proto::SweepPlan p = proto::sweep_plan(m, rate);
   ProgramRunner r = loaded(m, rate);
   r.start(kT0, 0);
   std::uint64_t k = 0;
   for (std::uint32_t j = 0; j < p.lines; ++j) {
-    const SweepLine line = sweep_line(p, j);
-    const std::uint64_t settle = sweep_settle_ticks(line), ticks = sweep_line_ticks(line);
+    const proto::SweepLine line = proto::sweep_line(p, j);
+    const std::uint64_t settle = proto::sweep_settle_ticks(line);
+    const std::uint64_t ticks = proto::sweep_line_ticks(line);
     for (std::uint64_t t = 0; t < ticks; ++t, ++k) {
       const ProgramStep s = r.step(kT0 + k, 0);
       if (s.step != j || !s.running || s.measuring != (t >= settle)) {
@@ -278,12 +279,12 @@ std::uint64_t run_sweep_against_schedule(const proto::LoadSweep& m, std::uint32_
   EXPECT_TRUE(end.finished);
   EXPECT_EQ(end.end, ProgramEnd::completed);
   EXPECT_EQ(r.repetitions_done(), p.lines);
-  EXPECT_EQ(k, sweep_total_ticks(p));
+  EXPECT_EQ(k, proto::sweep_total_ticks(p));
   return k;
 }
 
 TEST(ProgramSweep, PaperSweepHas361LinesAndLasts687sOfWholeCycles) {
-  const SweepPlan p = sweep_plan(paper_sweep(), kRate);
+  const proto::SweepPlan p = proto::sweep_plan(paper_sweep(), kRate);
   EXPECT_EQ(p.lines, 361u);
   // independent reference: sum over f = 2 + 0.05 j of (max(3, ceil(1.2 f)) + 5) / f seconds
   double reference_s = 0.0;
@@ -292,7 +293,7 @@ TEST(ProgramSweep, PaperSweepHas361LinesAndLasts687sOfWholeCycles) {
     const double settle = std::fmax(3.0, std::ceil(std::round(1.2 * f * 1e6) / 1e6));
     reference_s += (settle + 5.0) / f;
   }
-  const std::uint64_t ticks = sweep_total_ticks(p);
+  const std::uint64_t ticks = proto::sweep_total_ticks(p);
   std::printf("paper sweep: %llu ticks = %.5f s at 20 kHz (reference %.5f s)\n",
               static_cast<unsigned long long>(ticks), ticks / 20000.0, reference_s);
   EXPECT_EQ(ticks, 13743184u);  // 687.1592 s
@@ -308,17 +309,17 @@ TEST(ProgramSweep, PaperSweepRunsTickByTickOnItsScheduleAt20And40kHz) {
 }
 
 TEST(ProgramSweep, SettleCoversSettleMinInWholeCyclesAndAtLeastSettleCycles) {
-  const SweepPlan p = sweep_plan(paper_sweep(), kRate);
-  EXPECT_EQ(sweep_line(p, 0).settle_cycles, 3u);     // 2 Hz: 1.2 s is 2.4 cycles -> 3
-  EXPECT_EQ(sweep_line(p, 10).settle_cycles, 3u);    // 2.5 Hz: exactly 3.0 cycles
-  EXPECT_EQ(sweep_line(p, 11).settle_cycles, 4u);    // 2.55 Hz: 3.06 -> 4
-  EXPECT_EQ(sweep_line(p, 160).settle_cycles, 12u);  // 10 Hz: exactly 12
-  EXPECT_EQ(sweep_line(p, 161).settle_cycles, 13u);  // 10.05 Hz: 12.06 -> 13
-  EXPECT_EQ(sweep_line(p, 360).settle_cycles, 24u);  // 20 Hz
-  EXPECT_EQ(sweep_line(p, 360).cycles, 29u);
-  EXPECT_EQ(sweep_settle_ticks(sweep_line(p, 0)), 30000u);  // 3 cycles of 2 Hz
-  EXPECT_EQ(sweep_line_ticks(sweep_line(p, 0)), 80000u);    // 8 cycles = 4 s
-  EXPECT_EQ(sweep_line_ticks(sweep_line(p, 360)), 29000u);  // 29 cycles of 20 Hz = 1.45 s
+  const proto::SweepPlan p = proto::sweep_plan(paper_sweep(), kRate);
+  EXPECT_EQ(proto::sweep_line(p, 0).settle_cycles, 3u);     // 2 Hz: 1.2 s is 2.4 cycles -> 3
+  EXPECT_EQ(proto::sweep_line(p, 10).settle_cycles, 3u);    // 2.5 Hz: exactly 3.0 cycles
+  EXPECT_EQ(proto::sweep_line(p, 11).settle_cycles, 4u);    // 2.55 Hz: 3.06 -> 4
+  EXPECT_EQ(proto::sweep_line(p, 160).settle_cycles, 12u);  // 10 Hz: exactly 12
+  EXPECT_EQ(proto::sweep_line(p, 161).settle_cycles, 13u);  // 10.05 Hz: 12.06 -> 13
+  EXPECT_EQ(proto::sweep_line(p, 360).settle_cycles, 24u);  // 20 Hz
+  EXPECT_EQ(proto::sweep_line(p, 360).cycles, 29u);
+  EXPECT_EQ(proto::sweep_settle_ticks(proto::sweep_line(p, 0)), 30000u);  // 3 cycles of 2 Hz
+  EXPECT_EQ(proto::sweep_line_ticks(proto::sweep_line(p, 0)), 80000u);    // 8 cycles = 4 s
+  EXPECT_EQ(proto::sweep_line_ticks(proto::sweep_line(p, 360)), 29000u);  // 29 cycles of 20 Hz
 }
 
 TEST(ProgramSweep, SingleLineSweepFromStartEqualsStop) {

@@ -55,19 +55,21 @@ TEST(WaveformSine, CosineIsTheSineAQuarterTurnLater) {
 }
 
 TEST(WaveformPhase, IncrementIsTheNearestFractionOfATurnPerTick) {
-  EXPECT_EQ(phase_increment(5.0f, 20000), 1073742u);  // 5 / 20000 * 2^32 = 1073741.824
-  EXPECT_EQ(phase_increment(2.0f, 20000), 429497u);   // 429496.7296
-  EXPECT_EQ(phase_increment(2500.0f, 40000), 1u << 28);  // exact
+  EXPECT_EQ(proto::phase_increment(5.0f, 20000), 1073742u);  // 5 / 20000 * 2^32 = 1073741.824
+  EXPECT_EQ(proto::phase_increment(2.0f, 20000), 429497u);   // 429496.7296
+  EXPECT_EQ(proto::phase_increment(2500.0f, 40000), 1u << 28);  // exact
   for (float f : {0.01f, 0.05f, 1.0f, 19.95f, 2000.0f})
     for (std::uint32_t rate : {20000u, 40000u}) {
-      const double realised = phase_increment(f, rate) * static_cast<double>(rate) / kTurn;
+      const double realised = proto::phase_increment(f, rate) * static_cast<double>(rate) / kTurn;
       EXPECT_LE(std::fabs(realised - f), rate / kTurn / 2.0 + 1e-12) << f << " " << rate;
     }
 }
 
 TEST(WaveformPhase, FineIncrementRoundsToTheSameCoarseIncrement) {
   for (float f : {0.01f, 2.0f, 2.05f, 19.95f, 20.0f, 1999.9f})
-    EXPECT_EQ(coarse_increment(phase_increment_fine(f, 20000)), phase_increment(f, 20000)) << f;
+    EXPECT_EQ(proto::coarse_increment(proto::phase_increment_fine(f, 20000)),
+              proto::phase_increment(f, 20000))
+        << f;
 }
 
 // ---- multisine ------------------------------------------------------------------------------

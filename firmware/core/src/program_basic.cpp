@@ -11,7 +11,7 @@ proto::ErrorCode HoldProgram::validate(const proto::LoadHold&, std::uint32_t, st
 
 void HoldProgram::load(const proto::LoadHold& m, std::uint32_t rate_Hz) {
   current_A_ = m.current_A;
-  duration_ticks_ = ticks_from_seconds(m.duration_s, rate_Hz);
+  duration_ticks_ = proto::ticks_from_seconds(m.duration_s, rate_Hz);
 }
 
 void HoldProgram::step(std::uint64_t k, std::int32_t, ProgramTick& out) const {
@@ -32,7 +32,7 @@ proto::ErrorCode ContactWatchProgram::validate(const proto::LoadContactWatch&, s
 void ContactWatchProgram::load(const proto::LoadContactWatch& m, std::uint32_t rate_Hz) {
   hold_current_A_ = m.hold_current_A;
   threshold_counts_ = m.threshold_counts;
-  timeout_ticks_ = ticks_from_seconds(m.timeout_s, rate_Hz);
+  timeout_ticks_ = proto::ticks_from_seconds(m.timeout_s, rate_Hz);
 }
 
 void ContactWatchProgram::step(std::uint64_t k, std::int32_t encoder_count,
@@ -62,7 +62,7 @@ proto::ErrorCode SineProgram::validate(const proto::LoadSine& m, std::uint32_t,
 void SineProgram::load(const proto::LoadSine& m, std::uint32_t rate_Hz) {
   offset_A_ = m.offset_A;
   amplitude_A_ = m.amplitude_A;
-  increment_ = phase_increment(m.frequency_Hz, rate_Hz);
+  increment_ = proto::phase_increment(m.frequency_Hz, rate_Hz);
   cycles_total_ = m.cycles;
 }
 

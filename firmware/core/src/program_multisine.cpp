@@ -9,7 +9,7 @@ MultisineLines MultisineProgram::lines_of(const proto::LoadMultisine& m, std::ui
   l.count = proto::multisine_line_count(m.line_first, m.line_last, m.line_step);
   l.first = m.line_first;
   l.step = m.line_step;
-  l.period_ticks = multisine_period_ticks(m.fundamental_Hz, rate_Hz);
+  l.period_ticks = proto::multisine_period_ticks(m.fundamental_Hz, rate_Hz);
   l.ticks_per_point = rate_Hz / kMultisineSubRate_Hz;
   l.phase_mode = m.phase_mode;
   l.phase_seed = m.phase_seed;

@@ -7,13 +7,13 @@ proto::ErrorCode RampProgram::validate(const proto::LoadRamp& m, std::uint32_t,
                                        std::uint8_t& field_index) {
   // a step longer than the way from start_A to stop_A never reaches stop_A (start_A == stop_A is
   // a one-level ramp)
-  if (m.start_A != m.stop_A && grid_points(m.start_A, m.stop_A, m.step_A) < 2)
+  if (m.start_A != m.stop_A && proto::grid_points(m.start_A, m.stop_A, m.step_A) < 2)
     return detail::out_of_range(2, field_index);  // step_A
   return proto::ErrorCode::ok;
 }
 
 void RampProgram::load(const proto::LoadRamp& m, std::uint32_t rate_Hz) {
-  timing_ = ramp_timing(m, rate_Hz);
+  timing_ = proto::ramp_timing(m, rate_Hz);
   start_A_ = m.start_A;
   step_A_ = m.stop_A < m.start_A ? -m.step_A : m.step_A;
   reps_ = m.repetitions;

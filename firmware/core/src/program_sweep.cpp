@@ -9,13 +9,13 @@ proto::ErrorCode SweepProgram::validate(const proto::LoadSweep& m, std::uint32_t
   if (!detail::peak_within_limit(m.offset_A, m.amplitude_A))
     return detail::out_of_range(1, field_index);  // amplitude_A
   if (m.stop_Hz < m.start_Hz) return detail::out_of_range(3, field_index);  // stop_Hz
-  if (m.stop_Hz != m.start_Hz && grid_points(m.start_Hz, m.stop_Hz, m.step_Hz) < 2)
+  if (m.stop_Hz != m.start_Hz && proto::grid_points(m.start_Hz, m.stop_Hz, m.step_Hz) < 2)
     return detail::out_of_range(4, field_index);  // step_Hz cannot reach stop_Hz
   return proto::ErrorCode::ok;
 }
 
 void SweepProgram::load(const proto::LoadSweep& m, std::uint32_t rate_Hz) {
-  plan_ = sweep_plan(m, rate_Hz);
+  plan_ = proto::sweep_plan(m, rate_Hz);
   offset_A_ = m.offset_A;
   amplitude_A_ = m.amplitude_A;
 }
@@ -26,7 +26,7 @@ void SweepProgram::start(std::int32_t) {
 }
 
 void SweepProgram::begin_line() {
-  current_ = sweep_line(plan_, line_);
+  current_ = proto::sweep_line(plan_, line_);
   tick_ = 0;
   previous_ahead_ = current_.increment / 2;
   cycles_done_ = 0;

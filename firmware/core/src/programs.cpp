@@ -21,7 +21,7 @@ proto::ErrorCode ProgramRunner::load_as(Program& slot, proto::ProgramKind kind, 
                                         std::uint32_t rate_Hz, std::uint8_t& field_index) {
   field_index = 255;
   if (running()) return proto::ErrorCode::busy;
-  if (!is_supported_control_rate(rate_Hz)) return proto::ErrorCode::out_of_range;
+  if (!proto::is_supported_control_rate(rate_Hz)) return proto::ErrorCode::out_of_range;
   const int bad = m.first_out_of_range();
   if (bad >= 0) return detail::out_of_range(static_cast<std::uint8_t>(bad), field_index);
   const proto::ErrorCode e = Program::validate(m, rate_Hz, field_index);

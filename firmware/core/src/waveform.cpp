@@ -1,5 +1,4 @@
-// The sine table, computed by the compiler (no libm, no start-up cost), and the phase
-// increments.
+// The sine table, computed by the compiler (no libm, no start-up cost).
 #include "palp/fw/waveform.hpp"
 
 #include <array>
@@ -60,15 +59,5 @@ static_assert(kValues[0] == 0.0f && kValues[kSineTableSize / 4] == 1.0f &&
 namespace detail {
 constinit const std::array<float, kSineTableSize + 1> kSineTable = kValues;
 }  // namespace detail
-
-std::uint32_t phase_increment(float frequency_Hz, std::uint32_t rate_Hz) {
-  const double turns_per_tick = static_cast<double>(frequency_Hz) / static_cast<double>(rate_Hz);
-  return static_cast<std::uint32_t>(turns_per_tick * 4294967296.0 + 0.5);
-}
-
-std::uint64_t phase_increment_fine(float frequency_Hz, std::uint32_t rate_Hz) {
-  const double turns_per_tick = static_cast<double>(frequency_Hz) / static_cast<double>(rate_Hz);
-  return static_cast<std::uint64_t>(turns_per_tick * 18446744073709551616.0 + 0.5);
-}
 
 }  // namespace palp::fw

@@ -15,7 +15,7 @@
 #include <cstdint>
 
 #include "palp/fw/multisine_synth.hpp"
-#include "palp/fw/program_schedule.hpp"
+#include "palp/protocol/program_schedule.hpp"
 #include "palp/protocol/messages.hpp"
 
 namespace palp::fw {
@@ -26,10 +26,10 @@ inline proto::ErrorCode out_of_range(std::uint8_t field, std::uint8_t& field_ind
   field_index = field;
   return proto::ErrorCode::out_of_range;
 }
-/// Whether |offset_A| + peak_A stays within kProgramMaxCurrent_A.
+/// Whether |offset_A| + peak_A stays within proto::kProgramMaxCurrent_A.
 inline bool peak_within_limit(float offset_A, double peak_A) {
   const double offset = offset_A < 0 ? -static_cast<double>(offset_A) : offset_A;
-  return offset + peak_A <= kProgramMaxCurrent_A;
+  return offset + peak_A <= proto::kProgramMaxCurrent_A;
 }
 }  // namespace detail
 
@@ -121,7 +121,7 @@ class RampProgram {
   bool next_rep();  // false when it was the last
   void set_level(std::uint32_t level);
 
-  RampTiming timing_{};
+  proto::RampTiming timing_{};
   float start_A_ = 0.0f, step_A_ = 0.0f;  // step_A_ signed toward stop_A
   std::uint16_t reps_ = 1;
   bool unload_ = true;
@@ -151,10 +151,10 @@ class SweepProgram {
  private:
   void begin_line();
 
-  SweepPlan plan_{};
+  proto::SweepPlan plan_{};
   float offset_A_ = 0.0f, amplitude_A_ = 0.0f;
   std::uint32_t line_ = 0;
-  SweepLine current_{};
+  proto::SweepLine current_{};
   std::uint32_t tick_ = 0;  // within the line (wraps harmlessly: the phase is mod 2^32 anyway)
   std::uint32_t previous_ahead_ = 0;  // last phase + increment / 2
   std::uint32_t cycles_done_ = 0;

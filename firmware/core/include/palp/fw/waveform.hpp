@@ -3,10 +3,11 @@
 // tick on a Cortex-M4F: one table lookup is ~10 instructions, no division, no libm.
 //
 // Phase: a u32 p is the angle p / 2^32 turns (so it wraps exactly, like the multisine phases of
-// protocol/multisine.hpp). A tone of f_Hz at control rate R advances by phase_increment(f, R) =
-// round(f / R * 2^32) per tick; the realised frequency is increment * R / 2^32, within
-// R / 2^33 of f (2.3 uHz at 20 kHz, 4.7 uHz at 40 kHz). Programs compute the phase of tick k as
-// k * increment (mod 2^32): exact, so nothing accumulates however long a program runs.
+// protocol/multisine.hpp). A tone of f_Hz at control rate R advances by proto::phase_increment(f,
+// R) = round(f / R * 2^32) per tick (palp/protocol/program_schedule.hpp); the realised
+// frequency is increment * R / 2^32, within R / 2^33 of f (2.3 uHz at 20 kHz, 4.7 uHz at
+// 40 kHz). Programs compute the phase of tick k as k * increment (mod 2^32): exact, so nothing
+// accumulates however long a program runs.
 //
 // Table: kSineTableSize = 1024 samples of one turn (plus one guard sample), 4100 bytes of const
 // data, evaluated at compile time in double and rounded to float. Interpolation between two
@@ -48,19 +49,5 @@ inline float sin_turns(std::uint32_t phase) {
 
 /// cos(2 pi phase / 2^32), |error| <= kSineMaxError.
 inline float cos_turns(std::uint32_t phase) { return sin_turns(phase + kQuarterTurn); }
-
-/// round(frequency_Hz / rate_Hz * 2^32): the per-tick phase increment of a tone. For
-/// 0 <= frequency_Hz < rate_Hz / 2 (the programs allow at most 2000 Hz at 20 kHz). Load-time
-/// code (double arithmetic; reproducible bit for bit on any IEEE-754 machine).
-std::uint32_t phase_increment(float frequency_Hz, std::uint32_t rate_Hz);
-
-/// The same increment with 32 more fraction bits, round(frequency_Hz / rate_Hz * 2^64) (to the
-/// 53 bits of a double): for frequency grids whose lines must not accumulate rounding.
-std::uint64_t phase_increment_fine(float frequency_Hz, std::uint32_t rate_Hz);
-
-/// The u32 increment nearest a fine one: (fine + 2^31) >> 32.
-constexpr std::uint32_t coarse_increment(std::uint64_t fine) {
-  return static_cast<std::uint32_t>((fine + (1ull << 31)) >> 32);
-}
 
 }  // namespace palp::fw

@@ -2,8 +2,8 @@
 // lines and ticks a program has, exactly as the device runs it. The host needs the same numbers
 // to cut a recording into ramp levels and sweep lines, so everything here is integer arithmetic
 // on values derived once, at load, with double arithmetic that is reproducible bit for bit on any
-// IEEE-754 machine (no libm, no fused operations). The file depends only on the protocol and is
-// written to move into protocol/ when the host starts using it.
+// IEEE-754 machine (no libm, no fused operations). One definition for the firmware, which runs the
+// programs, and the host, which cuts their recordings.
 //
 // Time is counted in control ticks from ProgramStart: tick k is the k-th call of the program's
 // step, at device time start + k / control_rate_Hz.
@@ -13,7 +13,7 @@
 
 #include "palp/protocol/messages.hpp"
 
-namespace palp::fw {
+namespace palp::proto {
 
 /// The control rates a device runs at (Params.control_rate_Hz).
 constexpr bool is_supported_control_rate(std::uint32_t rate_Hz) {
@@ -27,6 +27,26 @@ inline constexpr double kProgramMaxCurrent_A = 4.0;
 /// A stop value counts as on the grid when within this fraction of a step of it (absorbs the
 /// f32 rounding of values such as 0.01 or 0.05).
 inline constexpr double kGridTolerance_steps = 1e-3;
+
+// ---- phase increments ------------------------------------------------------------------------
+// A u32 phase p is the angle p / 2^32 turns. A tone of f_Hz at control rate R advances by
+// phase_increment(f, R) per tick; its realised frequency is increment * R / 2^32.
+
+/// round(frequency_Hz / rate_Hz * 2^32): the per-tick phase increment of a tone. For
+/// 0 <= frequency_Hz < rate_Hz / 2 (the programs allow at most 2000 Hz at 20 kHz). Load-time
+/// code (double arithmetic; reproducible bit for bit on any IEEE-754 machine).
+std::uint32_t phase_increment(float frequency_Hz, std::uint32_t rate_Hz);
+
+/// The same increment with 32 more fraction bits, round(frequency_Hz / rate_Hz * 2^64) (to the
+/// 53 bits of a double): for frequency grids whose lines must not accumulate rounding.
+std::uint64_t phase_increment_fine(float frequency_Hz, std::uint32_t rate_Hz);
+
+/// The u32 increment nearest a fine one: (fine + 2^31) >> 32.
+constexpr std::uint32_t coarse_increment(std::uint64_t fine) {
+  return static_cast<std::uint32_t>((fine + (1ull << 31)) >> 32);
+}
+
+// ---- grids and durations ---------------------------------------------------------------------
 
 /// Number of grid points from `from` toward `to` by `step` (> 0), `to` included when on the grid:
 /// floor(|to - from| / step + kGridTolerance_steps) + 1.
@@ -58,7 +78,7 @@ struct RampTiming {
   std::uint64_t ticks_per_rep = 0;   ///< stairs_per_rep * dwell_ticks
   std::uint64_t total_ticks = 0;     ///< repetitions * ticks_per_rep (no displacement limit)
 };
-RampTiming ramp_timing(const proto::LoadRamp& m, std::uint32_t rate_Hz);
+RampTiming ramp_timing(const LoadRamp& m, std::uint32_t rate_Hz);
 
 /// The level of tick k (< total_ticks) when no displacement limit turns the ramp early.
 constexpr std::uint32_t ramp_level_at(const RampTiming& t, std::uint64_t k) {
@@ -85,7 +105,7 @@ struct SweepPlan {
   std::uint32_t settle_cycles = 0;
   std::uint32_t measure_cycles = 0;
 };
-SweepPlan sweep_plan(const proto::LoadSweep& m, std::uint32_t rate_Hz);
+SweepPlan sweep_plan(const LoadSweep& m, std::uint32_t rate_Hz);
 
 struct SweepLine {
   std::uint32_t increment = 0;      ///< phase increment per tick
@@ -112,4 +132,4 @@ std::uint64_t sweep_total_ticks(const SweepPlan& p);
 // (exact for the default 0.05 Hz; within 1 / (2P) of fundamental_Hz, 2.5e-5 at 1 Hz).
 std::uint32_t multisine_period_ticks(float fundamental_Hz, std::uint32_t rate_Hz);
 
-}  // namespace palp::fw
+}  // namespace palp::proto

@@ -1,9 +1,17 @@
 // Program timing (program_schedule.hpp). Load-time code: double arithmetic is allowed here.
-#include "palp/fw/program_schedule.hpp"
+#include "palp/protocol/program_schedule.hpp"
 
-#include "palp/fw/waveform.hpp"
+namespace palp::proto {
 
-namespace palp::fw {
+std::uint32_t phase_increment(float frequency_Hz, std::uint32_t rate_Hz) {
+  const double turns_per_tick = static_cast<double>(frequency_Hz) / static_cast<double>(rate_Hz);
+  return static_cast<std::uint32_t>(turns_per_tick * 4294967296.0 + 0.5);
+}
+
+std::uint64_t phase_increment_fine(float frequency_Hz, std::uint32_t rate_Hz) {
+  const double turns_per_tick = static_cast<double>(frequency_Hz) / static_cast<double>(rate_Hz);
+  return static_cast<std::uint64_t>(turns_per_tick * 18446744073709551616.0 + 0.5);
+}
 
 std::uint32_t grid_points(float from, float to, float step) {
   const double span = static_cast<double>(to) - static_cast<double>(from);
@@ -18,7 +26,7 @@ std::uint64_t ticks_from_seconds(float seconds, std::uint32_t rate_Hz) {
   return ticks == 0 ? 1 : ticks;
 }
 
-RampTiming ramp_timing(const proto::LoadRamp& m, std::uint32_t rate_Hz) {
+RampTiming ramp_timing(const LoadRamp& m, std::uint32_t rate_Hz) {
   RampTiming t;
   t.levels = grid_points(m.start_A, m.stop_A, m.step_A);
   t.stairs_per_rep = m.unload ? 2 * t.levels - 1 : t.levels;
@@ -28,7 +36,7 @@ RampTiming ramp_timing(const proto::LoadRamp& m, std::uint32_t rate_Hz) {
   return t;
 }
 
-SweepPlan sweep_plan(const proto::LoadSweep& m, std::uint32_t rate_Hz) {
+SweepPlan sweep_plan(const LoadSweep& m, std::uint32_t rate_Hz) {
   SweepPlan p;
   p.lines = grid_points(m.start_Hz, m.stop_Hz, m.step_Hz);
   p.start_fine = phase_increment_fine(m.start_Hz, rate_Hz);
@@ -61,4 +69,4 @@ std::uint32_t multisine_period_ticks(float fundamental_Hz, std::uint32_t rate_Hz
   return static_cast<std::uint32_t>(ticks + 0.5);
 }
 
-}  // namespace palp::fw
+}  // namespace palp::proto
