@@ -28,6 +28,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "palp/analysis/dynamics.hpp"
 #include "palp/analysis/frequency_response.hpp"
 #include "palp/analysis/kf_calibration.hpp"
@@ -109,6 +111,9 @@ struct IdentificationRun {
   Recording recording;
   DeviceInfo device;
   ProgramResult program;
+  /// The program the device ran (the one of settings.method; the other stays default).
+  proto::LoadSweep sweep;
+  proto::LoadMultisine multisine;
   bool interrupted = false;
   std::uint64_t samples_missing = 0;
   std::optional<analysis::Frf> frf;
@@ -122,6 +127,17 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
 
 /// The analysis identify() does, from run.recording (re-analysis of a loaded run).
 void analyze_identification(IdentificationRun& run);
+
+/// A run rebuilt from a loaded recording's sidecar (settings with K_f, the program as the device
+/// ran it, the control rate), not yet analysed: call analyze_identification(). ConfigError
+/// naming what is missing ("the recording's sidecar has no identification settings
+/// (extra.identification): ...") for a recording identify() did not write.
+IdentificationRun identification_run_of(const Recording& recording);
+
+/// The settings as the sidecar keeps them (lab units in the key names: mm, N/mm) and back;
+/// from_json throws ConfigError naming the first missing or mistyped key.
+nlohmann::json identification_settings_json(const IdentificationSettings& s);
+IdentificationSettings identification_settings_from_json(const nlohmann::json& j);
 
 /// Force-constant calibration in free air (kf_calibration.hpp): a staircase from start_A to
 /// stop_A and back, dwell_s a level; the fit over max_nodes nodes; written to the device's

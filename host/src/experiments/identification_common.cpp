@@ -1,0 +1,162 @@
+// Shared by identify() and calibrate_kf(): see identification_common.hpp.
+#include "identification_common.hpp"
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <future>
+#include <thread>
+#include <variant>
+
+#include "palp/result.hpp"
+
+namespace palp::ident {
+
+namespace {
+
+using std::chrono::milliseconds;
+using Clock = std::chrono::steady_clock;
+
+constexpr unsigned kRunningBit = 1u << static_cast<unsigned>(proto::StatusBit::program_running);
+
+milliseconds ms_from_s(double s) { return milliseconds(static_cast<long long>(std::ceil(s * 1e3))); }
+
+RecordingRow row_of(const Sample& s) {
+  return {.sample_index = s.index,
+          .t_s = s.t_device_s,
+          .i_cmd_A = s.i_cmd_A,
+          .i_A = s.i_A,
+          .z_mm = static_cast<double>(s.encoder_counts) * 1e-3,
+          .p_Pa = s.p_Pa,
+          .status = s.status,
+          .rep = 0};
+}
+
+}  // namespace
+
+double f32(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  double d = 0;
+  std::from_chars(buf, r.ptr, d);
+  return d;
+}
+
+void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled) {
+  while (probe.status().t_device_s < until_s) {
+    if (cancelled && cancelled()) return;
+    std::this_thread::sleep_for(1ms);
+  }
+}
+
+bool release_coil(Probe& probe, double settle_s, const std::function<bool()>& cancelled,
+                  const std::function<void()>& announce) {
+  const Status st = probe.status();
+  if (st.program_state != proto::ProgramState::running && std::fabs(st.i_cmd_A) <= 1e-3) return false;
+  if (announce) announce();
+  probe.stop();
+  wait_device_time(probe, st.t_device_s + settle_s, cancelled);
+  return true;
+}
+
+ProgramRecording record_program(Probe& probe, const std::function<void()>& load_and_start,
+                                double expected_s,
+                                const std::function<void(double, const Sample&)>& progress,
+                                const std::function<bool()>& cancelled) {
+  ProgramRecording out;
+  std::vector<Sample> samples;
+  std::exception_ptr error;
+  std::future<ProgramResult> done;
+  bool streaming = false;
+  try {
+    probe.start_stream();
+    streaming = true;
+    load_and_start();
+    const double wait_s = 2 * expected_s + 30;
+    done = std::async(std::launch::async, [&probe, wait_s] { return probe.wait(ms_from_s(wait_s)); });
+    std::vector<StreamItem> items;
+    double t0 = -1;
+    auto last_report = Clock::now();
+    bool stopping = false;
+    for (;;) {
+      items.clear();
+      if (auto it = probe.next(20ms)) {
+        items.push_back(*it);
+        probe.drain(items);
+      }
+      for (const auto& item : items) {
+        if (const auto* g = std::get_if<Gap>(&item)) {
+          out.samples_missing += g->count;
+          out.gaps.push_back({{"first_index", g->first_index},
+                              {"count", g->count},
+                              {"source", gap_source_name(g->source)},
+                              {"t_device_s", g->t_device_s}});
+        } else {
+          const auto& s = std::get<Sample>(item);
+          if ((s.status & kRunningBit) == 0) continue;  // before the program or after its end
+          if (t0 < 0) t0 = s.t_device_s;
+          samples.push_back(s);
+        }
+      }
+      if (progress && !samples.empty() && Clock::now() - last_report > 200ms) {
+        last_report = Clock::now();
+        progress(samples.back().t_device_s - t0, samples.back());
+      }
+      if (!stopping && cancelled && cancelled()) {
+        stopping = true;
+        out.interrupted = true;
+        probe.stop();
+      }
+      if (done.wait_for(0ms) == std::future_status::ready) {
+        out.program = done.get();
+        break;
+      }
+    }
+  } catch (...) {
+    error = std::current_exception();
+  }
+  // the coil back to 0 A, and the rest of the stream
+  try {
+    probe.stop();
+    if (done.valid()) done.wait();
+    if (streaming) {
+      probe.stop_stream();
+      while (auto it = probe.next(100ms))
+        if (const auto* s = std::get_if<Sample>(&*it); s && (s->status & kRunningBit) != 0)
+          samples.push_back(*s);
+    }
+  } catch (...) {
+    if (!error) error = std::current_exception();
+  }
+  if (error) std::rethrow_exception(error);
+  for (const Sample& s : samples) out.recording.append(row_of(s));
+  return out;
+}
+
+Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
+                     const ProgramRecording& r) {
+  Sidecar side;
+  side.device = device_json(device);
+  side.device["uri"] = probe.uri();
+  const Calibration cal = probe.calibration();
+  side.calibration = calibration_json(cal);
+  if (cal.stroke_origin_valid != 0) {
+    side.stroke_origin_z_mm = cal.stroke_origin_counts * 1e-3;
+  } else {
+    side.stroke_origin_z_mm_reason = "the device's stroke origin is not homed (palpctl calibrate home)";
+  }
+  for (const auto& z : probe.zeroing()) side.zeroing.push_back(zeroing_json(z));
+  const StreamInfo& stream = probe.stream_info();
+  side.extra["experiment"] = experiment;
+  side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
+                          {"period_s", stream.period_s},
+                          {"channels", stream.channels}};
+  side.extra["gaps"] = r.gaps;
+  side.extra["samples_missing"] = r.samples_missing;
+  side.extra["interrupted"] = r.interrupted;
+  side.sdk_version = sdk_version();
+  return side;
+}
+
+}  // namespace palp::ident

@@ -1,0 +1,53 @@
+// What identify() and calibrate_kf() share: releasing the coil, recording the samples a device
+// program drives, and the sidecar's common part (device, calibration, stroke origin, stream).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "palp/probe.hpp"
+#include "palp/recording.hpp"
+
+namespace palp::ident {
+
+/// The shortest decimal of a protocol f32 as a double (0.01f reads 0.01).
+double f32(float v);
+
+/// Waits until the device clock reaches until_s (or cancelled()).
+void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled);
+
+/// Stops a program left running or a contact hold carrying current and waits settle_s of device
+/// time; returns whether it had to. Calls announce() first when it does.
+bool release_coil(Probe& probe, double settle_s, const std::function<bool()>& cancelled,
+                  const std::function<void()>& announce);
+
+/// What record_program() collected.
+struct ProgramRecording {
+  Recording recording;  ///< the samples the program drove (status program_running), lab units
+  nlohmann::json gaps = nlohmann::json::array();
+  std::uint64_t samples_missing = 0;
+  ProgramResult program;
+  bool interrupted = false;
+};
+
+/// With the stream configured: starts it, calls load_and_start() (load + start the program),
+/// records every sample the program drives until it ends (waiting up to 2 x expected_s + 30 s),
+/// reporting progress(elapsed device time of the program, last sample) about every 200 ms; on
+/// cancelled() stops the program and returns what came (interrupted). Always leaves the coil at
+/// 0 A and the stream stopped; rethrows the first error after that.
+ProgramRecording record_program(Probe& probe, const std::function<void()>& load_and_start,
+                                double expected_s,
+                                const std::function<void(double, const Sample&)>& progress,
+                                const std::function<bool()>& cancelled);
+
+/// The sidecar's common part: device (with uri), calibration, stroke origin (or why not),
+/// zeroing, sdk version, and in extra "experiment", "stream", "gaps", "samples_missing",
+/// "interrupted".
+Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
+                     const ProgramRecording& r);
+
+}  // namespace palp::ident

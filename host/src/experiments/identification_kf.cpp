@@ -1,0 +1,132 @@
+// Force-constant calibration in free air (identification.hpp): a slow staircase both ways, the
+// absolute balance fitted for K_f(stroke) (kf_calibration.hpp), the table written to the
+// device's calibration block.
+#include <cmath>
+#include <string>
+
+#include "identification_common.hpp"
+#include "palp/error.hpp"
+#include "palp/identification.hpp"
+#include "palp/protocol/program_schedule.hpp"
+
+namespace palp {
+
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw ConfigError("K_f calibration settings: " + what);
+}
+
+proto::LoadRamp ramp_of(const KfCalibrationSettings& s) {
+  proto::LoadRamp m;
+  m.start_A = static_cast<float>(s.start_A);
+  m.stop_A = static_cast<float>(s.stop_A);
+  m.step_A = static_cast<float>(s.step_A);
+  m.dwell_s = static_cast<float>(s.dwell_s);
+  m.repetitions = 1;
+  m.unload = 1;
+  m.displacement_limit_counts = 0;
+  return m;
+}
+
+
+}  // namespace
+
+void KfCalibrationSettings::validate() const {
+  auto finite = [](double v) { return std::isfinite(v); };
+  require(finite(start_A) && start_A > 0 && start_A <= 4,
+          "start_A must lie in (0, 4] A (the coil must float off its rear stop)");
+  require(finite(stop_A) && stop_A > start_A && stop_A <= 4, "stop_A must lie above start_A, at most 4 A");
+  require(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
+          "step_A must lie in 0.0001 A .. stop_A - start_A");
+  require(finite(dwell_s) && dwell_s >= 0.05 && dwell_s <= 100, "dwell_s must lie in 0.05..100 s");
+  require(finite(settled_fraction) && settled_fraction > 0 && settled_fraction <= 1,
+          "settled_fraction must lie in (0, 1]");
+  require(max_nodes >= 2 && max_nodes <= 16, "max_nodes must lie in 2..16 (the calibration block holds 16)");
+  require(finite(k_v_N_per_m) && k_v_N_per_m > 0, "k_v_N_per_m must be positive");
+  require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= 1000,
+          "stream_rate_Hz must lie in (0, 1000] Hz");
+  require(!commit || write, "commit needs write (only the table written to RAM can be committed)");
+}
+
+KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,
+                              const IdentifyProgressFn& progress) {
+  settings.validate();
+  KfCalibrationRun run;
+  run.settings = settings;
+  auto report = [&](const char* phase, double fraction) {
+    if (progress) progress(IdentifyProgress{phase, std::min(1.0, std::max(0.0, fraction)), 0});
+  };
+  const DeviceInfo device = probe.info();
+  const auto rate = static_cast<std::uint32_t>(std::lround(device.control_rate_Hz));
+  ident::release_coil(probe, 1.0, {}, [&] { report("releasing the coil", 0); });
+  // the table's positions are from the stroke origin: home first when it is not known
+  if (probe.calibration().stroke_origin_valid == 0) {
+    report("homing", 0);
+    probe.home();
+  }
+  const double origin_z_m = probe.calibration().stroke_origin_counts * 1e-6;
+  probe.configure_stream({.rate_Hz = settings.stream_rate_Hz});
+
+  const proto::LoadRamp ramp = ramp_of(settings);
+  const double duration_s =
+      static_cast<double>(proto::ramp_timing(ramp, rate).total_ticks) / static_cast<double>(rate);
+  ident::ProgramRecording rec = ident::record_program(
+      probe,
+      [&] {
+        probe.load(ramp);
+        probe.start();
+      },
+      duration_s, [&](double elapsed_s, const Sample&) { report("staircase", elapsed_s / duration_s); },
+      {});
+  report("analysing", 1.0);
+  run.recording = std::move(rec.recording);
+  if (run.recording.size() == 0) throw ConfigError("K_f calibration: the staircase recorded no samples");
+
+  run.points = analysis::kf_static_points(run.recording, ramp, rate, origin_z_m, settings.settled_fraction);
+  const std::vector<double> nodes = analysis::kf_nodes_for(run.points, settings.max_nodes);
+  run.calibration = analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
+
+  // the sidecar keeps the calibration in force while the staircase ran
+  Sidecar side = ident::base_sidecar(probe, device, "kf_calibration", rec);
+  if (settings.write) {
+    Calibration cal = probe.calibration();
+    cal.kf_position_counts = {};
+    cal.kf_N_per_A = {};
+    for (std::size_t k = 0; k < run.calibration.node_stroke_m.size(); ++k) {
+      cal.kf_position_counts.push_back(
+          static_cast<std::int32_t>(std::lround(run.calibration.node_stroke_m[k] * 1e6)));
+      cal.kf_N_per_A.push_back(static_cast<float>(run.calibration.kf_N_per_A[k]));
+    }
+    probe.set_calibration(cal);
+    run.written = true;
+    if (settings.commit) {
+      probe.commit_calibration();
+      run.committed = true;
+    }
+  }
+
+  side.program = {{"kind", "ramp"},
+                  {"parameters",
+                   {{"start_A", ident::f32(ramp.start_A)},
+                    {"stop_A", ident::f32(ramp.stop_A)},
+                    {"step_A", ident::f32(ramp.step_A)},
+                    {"dwell_s", ident::f32(ramp.dwell_s)},
+                    {"reps", ramp.repetitions},
+                    {"unload", true},
+                    {"displacement_limit_mm", 0.0}}},
+                  {"result",
+                   {{"end", proto::enum_name(rec.program.end) ? proto::enum_name(rec.program.end) : "?"},
+                    {"t_device_s", rec.program.t_device_s},
+                    {"repetitions_done", rec.program.repetitions_done}}}};
+  side.extra["control_rate_Hz"] = rate;
+  side.extra["kf_calibration"] = {{"settled_fraction", settings.settled_fraction},
+                                  {"max_nodes", settings.max_nodes},
+                                  {"k_v_N_per_mm", settings.k_v_N_per_m * 1e-3},
+                                  {"written", run.written},
+                                  {"committed", run.committed}};
+  run.recording.sidecar = side;
+  return run;
+}
+
+}  // namespace palp
