@@ -161,6 +161,28 @@ TEST(SecondOrderFit, AFrequencyDependentStiffnessIsNotAdequate) {
   EXPECT_TRUE(right.adequate);
 }
 
+TEST(SecondOrderFit, PureNoiseEndsWithFinitePositiveParametersAndNotAdequate) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  std::vector<an::FrfLine> lines;
+  for (int i = 0; i < 40; ++i) {
+    an::FrfLine l;
+    l.f_Hz = 2.0 + 0.5 * i;
+    l.G_m_per_N = cd(noise(rng), noise(rng));
+    l.sigma_m_per_N = 1e-5;
+    lines.push_back(l);
+  }
+  const an::SecondOrderFit fit = an::fit_second_order(lines);
+  for (const double v : {fit.m_kg, fit.b_N_s_per_m, fit.k_N_per_m, fit.omega_n_rad_per_s, fit.zeta}) {
+    EXPECT_TRUE(std::isfinite(v));
+    EXPECT_GT(v, 0.0);
+  }
+  ASSERT_TRUE(fit.normalized_cost);
+  EXPECT_GT(*fit.normalized_cost, 100.0);
+  EXPECT_FALSE(fit.adequate);
+  EXPECT_LE(fit.lm_iterations, an::SecondOrderOptions{}.max_lm_iterations);
+}
+
 TEST(SecondOrderFit, RefusesBadLinesNamingThem) {
   const auto message = [](std::vector<an::FrfLine> lines) {
     try {

@@ -35,7 +35,9 @@ FreeAirResult free_air_from(double omega_n_rad_per_s, double zeta, double k_v_N_
 /// Contact decomposition with the static tangent stiffness k_o at the same bias (paper §IV-B):
 /// k_eff = k_v + k_o, m_eff = k_eff / w_n^2, b_total = 2 zeta k_eff / w_n, b_o = b_total - b_v,
 /// m_o = m_eff - m_v. m_eff folds any viscoelastic stiffening into an apparent mass (as the
-/// paper computes it); the fit's own m and k are reported beside it.
+/// paper computes it); the fit's own m and k are reported beside it. Standard errors by the
+/// delta method from k_o_se and the fit's omega_n and zeta errors, taken as independent (their
+/// correlation in a fit is small, ~0.05-0.2); b_v is taken as known.
 struct Decomposition {
   double k_o_N_per_m = 0, k_eff_N_per_m = 0;
   double m_eff_kg = 0, b_total_N_s_per_m = 0, b_o_N_s_per_m = 0, m_o_kg = 0;
