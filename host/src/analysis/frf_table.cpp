@@ -115,7 +115,9 @@ class TableParser {
     const std::vector<std::string_view> cells = split(line);
     if (cells.size() != header_.size())
       fail(std::to_string(cells.size()) + (cells.size() == 1 ? " cell" : " cells") +
-           " where the header has " + std::to_string(header_.size()));
+           " where the header has " + std::to_string(header_.size()) +
+           (cells.size() > header_.size() ? " (a decimal comma? numbers need a decimal point)"
+                                          : ""));
     double v[4] = {};
     for (std::size_t c = 0; c < cells.size(); ++c)
       if (!parse_number(cells[c], v[c]))

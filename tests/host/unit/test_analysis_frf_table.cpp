@@ -93,6 +93,9 @@ TEST(FrfTable, RefusesABadHeaderNamingTheLayouts) {
 TEST(FrfTable, RefusesBadRowsWithFileLineAndProblem) {
   const std::string h = "f_Hz,re_m_per_N,im_m_per_N\n";
   EXPECT_EQ(error_of(h + "1,1e-3,-1e-4\n2,1e-3\n"), "g.csv:3: 2 cells where the header has 3");
+  EXPECT_EQ(error_of(h + "1,1e-3,-1e-4\n2,0,001,-1e-4\n"),
+            "g.csv:3: 4 cells where the header has 3 (a decimal comma? numbers need a decimal "
+            "point)");
   EXPECT_EQ(error_of(h + "1,1e-3,-1e-4\n2,1e-3,abc\n"),
             "g.csv:3: column im_m_per_N: \"abc\" is not a finite number");
   EXPECT_EQ(error_of(h + "1,nan,-1e-4\n"), "g.csv:2: column re_m_per_N: \"nan\" is not a finite number");
