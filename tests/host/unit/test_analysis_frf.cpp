@@ -11,6 +11,9 @@
 
 #include "palp/analysis/frequency_response.hpp"
 #include "palp/error.hpp"
+#include "palp/fw/multisine_synth.hpp"
+#include "palp/fw/program_kinds.hpp"
+#include "palp/fw/programs.hpp"
 #include "palp/protocol/multisine.hpp"
 #include "palp/protocol/program_schedule.hpp"
 #include "palp/protocol/stream.hpp"
@@ -418,6 +421,32 @@ TEST(MultisineUnitPeak, EqualsABruteForceEvaluationOverThePeriod) {
     if (mode == proto::PhaseMode::zero) {
       EXPECT_NEAR(peak, 25.0, 1e-9);  // all lines at t = 0
     }
+  }
+}
+
+TEST(MultisineUnitPeak, MatchesTheFirmwaresSetPointsOverOnePeriod) {
+  // the device's ProgramRunner played for one period: its largest |set-point - offset| is the
+  // unit peak times the line amplitude, within the generator's stated error bound
+  for (std::uint32_t rate : {20000u, 40000u}) {
+    proto::LoadMultisine m = small_multisine();
+    m.phase_mode = proto::PhaseMode::schroeder;
+    palp::fw::ProgramRunner runner;
+    std::uint8_t field = 0;
+    ASSERT_EQ(runner.load(m, rate, field), proto::ErrorCode::ok);
+    ASSERT_EQ(runner.start(0, 0), proto::ErrorCode::ok);
+    const std::uint32_t P = proto::multisine_period_ticks(m.fundamental_Hz, rate);
+    double device_peak = 0;
+    for (std::uint32_t k = 0; k < P; ++k) {
+      const palp::fw::ProgramStep st = runner.step(k, 0);
+      device_peak = std::max(device_peak, std::abs(double{st.current_A} - m.offset_A));
+    }
+    const double bound = palp::fw::multisine_error_bound(
+        palp::fw::MultisineProgram::lines_of(m, rate), rate);
+    const double A = m.line_amplitude_A;
+    const double peak = an::multisine_unit_peak(m, rate);
+    EXPECT_NEAR(device_peak / A, peak, bound + 1e-5 * peak) << rate;  // + the f32 current
+    EXPECT_GT(peak, 5.0);  // Schroeder phases: far below the 25 of aligned lines
+    EXPECT_LT(peak, 12.0);
   }
 }
 

@@ -46,7 +46,8 @@ struct KfCalibration {
 };
 
 /// Evenly spaced nodes over the points' stroke range, at most max_nodes (the calibration block
-/// holds 16) and at least two points between neighbours.
+/// holds 16) and at least two points between neighbours; at most points - 3 nodes (what
+/// fit_kf_table needs). ConfigError for fewer than 4 points or points at one stroke.
 std::vector<double> kf_nodes_for(std::span<const KfStaticPoint> points, std::size_t max_nodes = 16);
 
 /// The least-squares fit. ConfigError for k_v <= 0, nodes not increasing, fewer points than
