@@ -8,15 +8,21 @@
 // measured current with the force constant of `FrfOptions` (the constant, or a K_f(stroke) table
 // at each line's mean position).
 //
-// Stepped sine: the program's start is found to the microsecond from the commanded current's
+// The recording may start before the program (the commanded current constant until it starts)
+// or with its first samples (only those with program_running, as the experiments record);
+// t_s must lie on the control-tick grid (device time). FrfLine::f_Hz is the frequency the
+// device realised (its phase increment, or harmonic * rate / period ticks).
+//
+// Stepped sine: the program's start is found to the control tick from the commanded current's
 // phase on the first line (the device starts every line at phase 0), each line's measured
 // cycles are cut from the schedule, and current and position are each fitted with
 // c + a cos(wt) + b sin(wt) (+ a linear drift) over that window (least squares: no leakage from
 // the bias when the window is not a whole number of samples); sigma from the fit residuals.
 // Multisine: the transient periods are dropped, every following whole period is transformed at
-// the excited and empty lines (exact DFT bins: a period is a whole number of samples), the
-// phasors are averaged over periods, and the period-to-period variance gives each line's sigma
-// (P >= 2 measured periods; with one period sigma is 0 and the note says so).
+// the excited lines and the empty ones between the first and the last (exact DFT bins: a period
+// is a whole number of samples), the phasors are averaged over periods, and the period-to-period
+// variance gives each line's sigma (P >= 2 measured periods; with one period sigma is 0 and the
+// note says so).
 //
 // Errors: ConfigError naming the problem (too few samples for a line, a recording that does not
 // cover the program, stream rate not dividing the period, NaN in the data ...).
@@ -40,7 +46,8 @@ struct FrfOptions {
   double stroke_origin_z_m = 0.0;
   /// Multisine: whole periods dropped at the start (the transient).
   int multisine_discard_periods = 1;
-  /// Even or odd distortion above this ratio of the excited level sets FrfDistortion::too_large.
+  /// Even or odd distortion above this ratio of the excited level sets FrfDistortion::too_large
+  /// (when it also stands above twice the noise floor, noise_rms_m: noise is not distortion).
   double distortion_limit = 0.05;
 };
 
@@ -57,7 +64,8 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
 /// line amplitude by peak_A / this to reach a wanted peak.
 double multisine_unit_peak(const proto::LoadMultisine& program, std::uint32_t control_rate_Hz);
 
-/// Device time of a program, s (exactly as the device runs it).
+/// Device time of a program, s (exactly as the device runs it). ConfigError for a multisine
+/// with periods 0 (it runs until stopped) or a control rate the device does not run at.
 double program_duration_s(const proto::LoadSweep& program, std::uint32_t control_rate_Hz);
 double program_duration_s(const proto::LoadMultisine& program, std::uint32_t control_rate_Hz);
 

@@ -32,7 +32,8 @@ struct FrfDistortion {
   double excited_rms_m = 0;
   /// rms of |Z| over the empty lines that collect even- / odd-order products, m
   double even_rms_m = 0, odd_rms_m = 0;
-  /// rms of the period-to-period noise of Z over the empty lines, m
+  /// rms of the period-to-period noise of Z over the empty lines, m: the noise of the averaged
+  /// Z (sd over periods / sqrt(periods)), the floor even_rms and odd_rms stand on
   double noise_rms_m = 0;
   /// even_rms / excited_rms and odd_rms / excited_rms (dimensionless)
   double even_ratio = 0, odd_ratio = 0;
