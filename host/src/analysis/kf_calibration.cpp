@@ -163,8 +163,11 @@ std::vector<double> kf_nodes_for(std::span<const KfStaticPoint> points, std::siz
   return {lo, hi};  // not reached: two nodes hold every point between them
 }
 
-KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_per_m,
-                           std::span<const double> node_stroke_m) {
+namespace {
+
+/// The fit; with an anchor, as a constraint (one node eliminated).
+KfCalibration fit(std::span<const KfStaticPoint> points, double k_v_N_per_m,
+                  std::span<const double> node_stroke_m, const KfAnchor* anchor) {
   const char* who = "fit_kf_table";
   if (!(k_v_N_per_m > 0) || !std::isfinite(k_v_N_per_m))
     throw ConfigError(strf("%s: k_v must be > 0 (got %g N/m)", who, k_v_N_per_m));
@@ -173,6 +176,9 @@ KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_p
   for (std::size_t j = 0; j < n; ++j)
     if (!std::isfinite(node_stroke_m[j]) || (j > 0 && !(node_stroke_m[j] > node_stroke_m[j - 1])))
       throw ConfigError(strf("%s: the nodes must increase (node %zu)", who, j));
+  if (anchor && !(std::isfinite(anchor->stroke_m) && std::isfinite(anchor->kf_N_per_A) &&
+                  anchor->kf_N_per_A > 0))
+    throw ConfigError(strf("%s: the anchor needs a finite stroke and a finite K_f > 0", who));
   const std::size_t unknowns = n + 1;
   if (points.size() < unknowns + 2)
     throw ConfigError(strf("%s: %zu points for %zu unknowns (need at least %zu)", who,
@@ -189,41 +195,88 @@ KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_p
                              who, node_stroke_m[j] * 1e3));
   }
 
-  // rows: sum_j hat_j(s) i K_j - c = k_v s
-  const auto rows = static_cast<Eigen::Index>(points.size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, static_cast<Eigen::Index>(unknowns));
-  Eigen::VectorXd y(rows);
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  // rows: sum_j hat_j(s) i K_j - c = k_v s (N), unknowns x = (K_0 ... K_n-1, c)
+  const auto m = static_cast<Eigen::Index>(points.size());
+  const auto u = static_cast<Eigen::Index>(unknowns);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, u);
+  Eigen::VectorXd y(m);
+  double i_min = std::numeric_limits<double>::infinity();
+  for (Eigen::Index r = 0; r < m; ++r) {
     const KfStaticPoint& p = points[static_cast<std::size_t>(r)];
     for (std::size_t j = 0; j < n; ++j)
       A(r, static_cast<Eigen::Index>(j)) = hat(node_stroke_m, j, p.stroke_m) * p.i_A;
-    A(r, static_cast<Eigen::Index>(n)) = -1.0;
+    A(r, u - 1) = -1.0;
     y[r] = k_v_N_per_m * p.stroke_m;
+    i_min = std::min(i_min, std::abs(p.i_A));
   }
-  const auto qr = A.colPivHouseholderQr();
-  if (qr.rank() < static_cast<Eigen::Index>(unknowns))
-    throw ConfigError(strf("%s: the points do not determine the table (rank %lld of %zu)", who,
-                           static_cast<long long>(qr.rank()), unknowns));
-  const Eigen::VectorXd x = qr.solve(y);
-  const Eigen::VectorXd res = A * x - y;
-  const double rss = res.squaredNorm();
-  const auto dof = static_cast<double>(rows - static_cast<Eigen::Index>(unknowns));
-  const Eigen::MatrixXd cov = (A.transpose() * A).inverse() * (rss / dof);
+  // x = T z + x0: without an anchor T = 1; with one, the anchor's node with the largest weight
+  // is eliminated, K_a = sum_j hat_j(s_a) K_j solved for it
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(u, u);
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(u);
+  if (anchor) {
+    Eigen::VectorXd h(u);
+    h.setZero();
+    for (std::size_t j = 0; j < n; ++j)
+      h[static_cast<Eigen::Index>(j)] = hat(node_stroke_m, j, anchor->stroke_m);
+    Eigen::Index e = 0;
+    h.maxCoeff(&e);
+    Eigen::MatrixXd Te = Eigen::MatrixXd::Zero(u, u - 1);
+    for (Eigen::Index k = 0, col = 0; k < u; ++k) {
+      if (k == e) continue;
+      Te(k, col) = 1.0;
+      Te(e, col) = -h[k] / h[e];
+      ++col;
+    }
+    T = Te;
+    x0[e] = anchor->kf_N_per_A / h[e];
+  }
+  const Eigen::MatrixXd Az = A * T;
+  const Eigen::VectorXd yz = y - A * x0;
+  const auto qr = Az.colPivHouseholderQr();
+  if (qr.rank() < Az.cols())
+    throw ConfigError(strf("%s: the points do not determine the table (rank %lld of %lld)", who,
+                           static_cast<long long>(qr.rank()), static_cast<long long>(Az.cols())));
+  const Eigen::VectorXd z = qr.solve(yz);
+  const Eigen::VectorXd x = T * z + x0;
+  const double rss = (Az * z - yz).squaredNorm();
+  const auto dof = static_cast<double>(m - Az.cols());
+  const Eigen::MatrixXd cov = T * (Az.transpose() * Az).inverse() * T.transpose() * (rss / dof);
 
   KfCalibration c;
   c.node_stroke_m.assign(node_stroke_m.begin(), node_stroke_m.end());
+  double kf_mean = 0;
   for (std::size_t j = 0; j < n; ++j) {
     const auto e = static_cast<Eigen::Index>(j);
     c.kf_N_per_A.push_back(x[e]);
     c.kf_se_N_per_A.push_back(std::sqrt(std::max(0.0, cov(e, e))));
+    kf_mean += std::abs(x[e]) / static_cast<double>(n);
   }
   const auto ce = static_cast<Eigen::Index>(n);
   c.c_N = x[ce];
   c.c_se_N = std::sqrt(std::max(0.0, cov(ce, ce)));
   c.k_v_N_per_m = k_v_N_per_m;
-  c.residual_rms_N = std::sqrt(rss / static_cast<double>(rows));
+  c.residual_rms_N = std::sqrt(rss / static_cast<double>(m));
   c.points = points.size();
+  // c's uncertainty moves K_f by dc / i: say so when that exceeds 1 % at the lowest current
+  const double moved = c.c_se_N / std::max(i_min, 1e-9);
+  if (moved > 0.01 * kf_mean)
+    c.warning = strf("K_f is poorly determined: the constant c has a standard error of %.3g N, "
+                     "which moves K_f by %.1f %% at the lowest current (%.3f A); free-air points "
+                     "fix K_f only up to dc / i: anchor K_f at one position or fit fewer nodes",
+                     c.c_se_N, 100 * moved / kf_mean, i_min);
   return c;
+}
+
+}  // namespace
+
+KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_per_m,
+                           std::span<const double> node_stroke_m) {
+  return fit(points, k_v_N_per_m, node_stroke_m, nullptr);
+}
+
+KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_per_m,
+                           std::span<const double> node_stroke_m, const KfAnchor& anchor) {
+  return fit(points, k_v_N_per_m, node_stroke_m, &anchor);
 }
 
 }  // namespace palp::analysis

@@ -19,6 +19,7 @@ namespace {
 
 namespace an = palp::analysis;
 namespace proto = palp::proto;
+using ::testing::HasSubstr;
 
 constexpr std::uint32_t kRate = 20000;
 constexpr std::int64_t kDecimation = 20;
@@ -146,6 +147,7 @@ TEST(FitKfTable, RecoversThePlantsTableAtItsNodesWithNoise) {
     EXPECT_LT(std::abs(c.kf_N_per_A[j] - truth), 4.5 * c.kf_se_N_per_A[j]) << j;
   }
   EXPECT_NEAR(c.c_N, kC, 0.01);
+  EXPECT_EQ(c.warning, "");  // four nodes on the table's own kinks hold c
   EXPECT_EQ(c.points, 209u);
   EXPECT_DOUBLE_EQ(c.k_v_N_per_m, kKv);
   EXPECT_GT(c.residual_rms_N, 0.0);
@@ -169,6 +171,34 @@ TEST(FitKfTable, NoiseFreeIsExactAndTheSlopeIsRecoveredWhereKvDsDiIsBiased) {
   EXPECT_GT(std::abs(naive - truth), 0.05 * truth);  // biased by > 5 %
   const double w = points[q].stroke_m / 0.017;       // the fitted table there
   EXPECT_NEAR((1 - w) * c.kf_N_per_A[0] + w * c.kf_N_per_A[1], truth, 1e-6 * truth);
+}
+
+TEST(FitKfTable, WithManyNodesOnlyAnAnchorFixesKfAndTheUnanchoredFitSaysSo) {
+  // every constant c has its exact K_f = (k_v s + c) / i(s): with 16 nodes the unanchored fit is
+  // nearly singular; the anchor (the paper's 2.918 N/A, in the table's flat part) fixes it
+  const proto::LoadRamp m = calibration_ramp();
+  Synth s;
+  s.noise_i_A = 2e-3;
+  s.noise_z_m = 1e-6;
+  const auto points = an::kf_static_points(ramp_recording(m, s), m, kRate, kOrigin);
+  const std::vector<double> nodes = an::kf_nodes_for(points);
+  ASSERT_EQ(nodes.size(), 16u);
+  const an::KfCalibration loose = an::fit_kf_table(points, kKv, nodes);
+  EXPECT_THAT(loose.warning, HasSubstr("K_f is poorly determined: the constant c has a standard "
+                                       "error of "));
+  EXPECT_GT(loose.c_se_N, 0.005);
+  const an::KfCalibration c = an::fit_kf_table(points, kKv, nodes, an::KfAnchor{0.028, 2.918});
+  EXPECT_EQ(c.warning, "");
+  EXPECT_NEAR(c.c_N, kC, 0.002);
+  EXPECT_LT(c.c_se_N, 0.002);
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const double truth = plant_kf().at(nodes[j]);
+    // the nodes do not sit on the table's kinks at 17 and 23.5 mm: within 2 % everywhere
+    EXPECT_NEAR(c.kf_N_per_A[j], truth, 0.02 * truth) << nodes[j];
+  }
+  const double w = (0.028 - nodes[12]) / (nodes[13] - nodes[12]);  // the anchor holds exactly
+  ASSERT_TRUE(nodes[12] <= 0.028 && 0.028 <= nodes[13]);
+  EXPECT_NEAR((1 - w) * c.kf_N_per_A[12] + w * c.kf_N_per_A[13], 2.918, 1e-12);
 }
 
 TEST(KfNodesFor, EvenlySpacedAtMostMaxNodesWithTwoPointsBetweenNeighbours) {
@@ -205,6 +235,12 @@ TEST(FitKfTable, BadInputIsAConfigErrorWithExactText) {
   EXPECT_EQ(text(0.0, nodes, 10), "fit_kf_table: k_v must be > 0 (got 0 N/m)");
   EXPECT_EQ(text(kKv, {0.0, 0.009, 0.004}, 10), "fit_kf_table: the nodes must increase (node 2)");
   EXPECT_EQ(text(kKv, nodes, 5), "fit_kf_table: 5 points for 4 unknowns (need at least 6)");
+  try {
+    an::fit_kf_table(points, kKv, nodes, an::KfAnchor{0.004, 0.0});
+    FAIL();
+  } catch (const palp::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "fit_kf_table: the anchor needs a finite stroke and a finite K_f > 0");
+  }
   EXPECT_EQ(text(kKv, {0.0, 0.0041, 0.0042, 0.0043, 0.009}, 10),
             "fit_kf_table: no point between the neighbours of the node at 4.200 mm: its K_f "
             "cannot be identified");

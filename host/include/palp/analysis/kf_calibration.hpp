@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "palp/protocol/messages.hpp"
@@ -43,6 +44,9 @@ struct KfCalibration {
   double k_v_N_per_m = 0;
   double residual_rms_N = 0;           ///< of the balance
   std::size_t points = 0;
+  /// Set when c, and with it K_f, is poorly determined (see KfAnchor): one sentence with the
+  /// numbers and what to do. Empty otherwise.
+  std::string warning;
 };
 
 /// Evenly spaced nodes over the points' stroke range, at most max_nodes (the calibration block
@@ -54,5 +58,20 @@ std::vector<double> kf_nodes_for(std::span<const KfStaticPoint> points, std::siz
 /// unknowns + 2, a node with no point within its neighbours' span (unidentifiable).
 KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_per_m,
                            std::span<const double> node_stroke_m);
+
+/// A known K_f at one stroke position (e.g. the paper's 2.918 N/A at 24 mm of travel). Free-air
+/// static points fix K_f(s) only up to K_f(s) + dc / i(s): they lie on one curve i(s), and every
+/// constant c has its exact K_f = (k_v s + c) / i. A fit with few nodes is held by their
+/// piecewise-linear shape; with many (kf_nodes_for's 16) it is nearly singular, c and K_f wander
+/// with the noise, and KfCalibration::warning says so. The anchor fixes K_f there, and so c.
+struct KfAnchor {
+  double stroke_m = 0;
+  double kf_N_per_A = 0;
+};
+
+/// The fit with K_f(anchor.stroke_m) = anchor.kf_N_per_A (a constraint). ConfigError as above,
+/// and for an anchor that is not finite or K_f <= 0.
+KfCalibration fit_kf_table(std::span<const KfStaticPoint> points, double k_v_N_per_m,
+                           std::span<const double> node_stroke_m, const KfAnchor& anchor);
 
 }  // namespace palp::analysis
