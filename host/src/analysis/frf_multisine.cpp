@@ -3,6 +3,7 @@
 // tick, exact DFT bins per period, averages and period-to-period scatter.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "frf_internal.hpp"
 #include "palp/analysis/frequency_response.hpp"
@@ -182,24 +183,27 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
     throw ConfigError(strf("%s: %lld whole periods recorded and %lld discarded: none left to "
                            "measure",
                            kWho, static_cast<long long>(last), static_cast<long long>(discard)));
-  const auto M = static_cast<std::size_t>(last - discard);
-
-  // the first sample of every measured period, each with N samples spaced d
-  std::vector<std::size_t> first(M);
-  std::vector<std::int64_t> offset(M);  // of the period's first sample from its start, ticks
-  for (std::size_t p = 0; p < M; ++p) {
-    const std::int64_t start = t0 + (discard + static_cast<std::int64_t>(p)) * P;
+  // the first sample of every whole measured period (N samples spaced d); a period with a gap
+  // in the stream is left out and the notes say so
+  std::vector<std::size_t> first;
+  std::vector<std::int64_t> offset;  // of the period's first sample from its start, ticks
+  std::vector<std::string> skipped;
+  for (std::int64_t p = discard; p < last; ++p) {
+    const std::int64_t start = t0 + p * P;
     const auto it = std::lower_bound(r.tick.begin(), r.tick.end(), start);
     const auto k = static_cast<std::size_t>(it - r.tick.begin());
     if (k + N > r.size() || r.tick[k + N - 1] - r.tick[k] != static_cast<std::int64_t>(N - 1) * d ||
-        r.tick[k] - start >= d)
-      throw ConfigError(strf("%s: period %lld is not whole in the recording (a gap in the "
-                             "stream near %.6f s)",
-                             kWho, static_cast<long long>(discard) + static_cast<long long>(p),
-                             static_cast<double>(start) / rate));
-    first[p] = k;
-    offset[p] = r.tick[k] - start;
+        r.tick[k] - start >= d) {
+      skipped.push_back(strf("period %lld (from %.6f s) has a gap in the stream: left out",
+                             static_cast<long long>(p), static_cast<double>(start) / rate));
+      continue;
+    }
+    first.push_back(k);
+    offset.push_back(r.tick[k] - start);
   }
+  if (first.empty())
+    throw ConfigError(strf("%s: every measured period has a gap in the stream", kWho));
+  const std::size_t M = first.size();
 
   // harmonics to transform: the excited lines, then the empty ones between them
   std::vector<std::uint32_t> harmonics = l.h;
@@ -246,6 +250,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
     excited_abs.push_back(std::abs(line.Z_m));
     out.lines.push_back(line);
   }
+  out.notes.insert(out.notes.end(), skipped.begin(), skipped.end());
   if (M < 2)
     out.notes.push_back("one measured period: sigma is 0 (record two or more periods after the "
                         "transient to measure the noise)");

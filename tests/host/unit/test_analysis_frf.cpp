@@ -367,6 +367,23 @@ TEST(MultisineFrf, AQuadraticNonlinearityShowsAsEvenDistortionNotOdd) {
   EXPECT_THAT(large.distortion->warning, HasSubstr("(limit 5.0 %)"));
 }
 
+TEST(MultisineFrf, APeriodWithAGapInTheStreamIsLeftOutAndNoted) {
+  const proto::LoadMultisine m = small_multisine();
+  const Synth s;
+  palp::Recording whole = multisine_recording(m, s), rec;
+  // period 5 runs from 12.74565 + 5 x 2 s; ten samples lost in its middle
+  for (std::size_t k = 0; k < whole.size(); ++k)
+    if (whole.t_s[k] < 23.5 || whole.t_s[k] >= 23.51)
+      rec.append({.sample_index = k, .t_s = whole.t_s[k], .i_cmd_A = (*whole.i_cmd_A)[k],
+                  .i_A = whole.i_A[k], .z_mm = whole.z_mm[k]});
+  ASSERT_EQ(rec.size() + 10, whole.size());
+  const an::Frf frf = an::multisine_frf(rec, m, kRate);
+  EXPECT_THAT(frf.notes, ::testing::Contains("period 5 (from 22.745650 s) has a gap in the "
+                                             "stream: left out"));
+  for (const an::FrfLine& l : frf.lines)
+    EXPECT_LT(std::abs(l.G_m_per_N - g_true(l.f_Hz)), 1e-9 * std::abs(g_true(l.f_Hz)));
+}
+
 TEST(MultisineFrf, ATruncatedRecordingAndAStreamNotDividingThePeriodAreConfigErrors) {
   proto::LoadMultisine m = small_multisine();
   m.periods = 3;
