@@ -537,6 +537,8 @@ void add_analyze_command(CLI::App& app, Context& ctx) {
   map->callback([&ctx, mp, mc] {
     ctx.action = [&ctx, mp, mc] { return analyze_map_command(ctx, mp->input, params_of(*mp), mp->kf_table, *mc); };
   });
+
+  add_analyze_sweep_commands(cmd, ctx);
 }
 
 }  // namespace palpctl

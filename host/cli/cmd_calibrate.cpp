@@ -1,9 +1,12 @@
-// palpctl calibrate current-offset|pressure-zero|home: measure, set in RAM, then commit to flash.
+// palpctl calibrate current-offset|pressure-zero|home|kf: measure, set in RAM, then commit to flash.
 // This is the one place the CLI writes the device's flash (zeroing before a measurement with
 // `run --zero-*` stays in RAM and is kept in the recording's sidecar instead).
+#include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include "common.hpp"
+#include "palp/identification.hpp"
 
 namespace palpctl {
 
@@ -48,6 +51,44 @@ CLI::App* add_one(CLI::App& parent, Context& ctx, const std::string& name,
   cmd->callback([&ctx, name, o] { ctx.action = [&ctx, name, o] { return calibrate(ctx, name, *o); }; });
   return cmd;
 }
+int calibrate_kf(const Context& ctx, const palp::KfCalibrationSettings& settings) {
+  settings.validate();
+  auto probe = ctx.connect();
+  Progress progress("calibrate kf", 1000, !ctx.json, "permille");
+  const palp::KfCalibrationRun run = palp::calibrate_kf(probe, settings, [&](const palp::IdentifyProgress& p) {
+    progress.update(static_cast<std::uint64_t>(p.fraction * 1000));
+  });
+  progress.finish(1000);
+  const auto& c = run.calibration;
+  json nodes = json::array();
+  for (std::size_t k = 0; k < c.node_stroke_m.size(); ++k)
+    nodes.push_back({{"stroke_mm", mm_from_m(c.node_stroke_m[k])},
+                     {"kf_N_per_A", c.kf_N_per_A[k]},
+                     {"kf_N_per_A_se", c.kf_se_N_per_A[k]}});
+  json j = {{"calibrate", "kf"},
+            {"balance", "K_f(s) i = k_v (s - s_rest) + c, least squares over the settled levels"},
+            {"kv_N_per_mm", N_per_mm_from_N_per_m(c.k_v_N_per_m)},
+            {"levels", run.points.size()},
+            {"nodes", nodes},
+            {"c_N", c.c_N},
+            {"c_N_se", c.c_se_N},
+            {"residual_rms_N", c.residual_rms_N},
+            {"written", run.written},
+            {"committed", run.committed}};
+  if (ctx.json) {
+    print_json(j);
+  } else {
+    for (const auto& n : nodes)
+      std::printf("stroke %7.3f mm  K_f %.4f +- %.4f N/A\n", n["stroke_mm"].get<double>(),
+                  n["kf_N_per_A"].get<double>(), n["kf_N_per_A_se"].get<double>());
+    std::printf("%zu levels, residual %.3g N rms; %s\n", run.points.size(), c.residual_rms_N,
+                run.committed ? "committed to the device's flash"
+                : run.written ? "set in RAM only (lost at power-off)"
+                              : "not written to the device");
+  }
+  return kOk;
+}
+
 }  // namespace
 
 void add_calibrate_command(CLI::App& app, Context& ctx) {
@@ -79,6 +120,32 @@ void add_calibrate_command(CLI::App& app, Context& ctx) {
   home->add_option("--seconds", o->home_seconds, "How long to hold before taking the origin, s")
       ->check(CLI::Range(0.2, 60.0))
       ->capture_default_str();
+
+  auto kf = std::make_shared<palp::KfCalibrationSettings>();
+  auto* kfc = cmd->add_subcommand(
+      "kf", "Force constant along the stroke, in free air (probe clear of everything): a slow "
+            "staircase of currents up and back, each settled level a balance K_f(s) i = k_v (s - "
+            "s_rest) + c; K_f(s) piecewise linear over up to 16 nodes, written to the device's "
+            "calibration table (needs the stroke origin: calibrate home first)");
+  kfc->add_option("--start-A", kf->start_A, "Lowest current, A")->check(CLI::Range(-4.0, 4.0))->capture_default_str();
+  kfc->add_option("--stop-A", kf->stop_A, "Highest current, A")->check(CLI::Range(-4.0, 4.0))->capture_default_str();
+  kfc->add_option("--step-A", kf->step_A, "Current step, A")->check(CLI::Range(0.0001, 4.0))->capture_default_str();
+  kfc->add_option("--dwell-s", kf->dwell_s, "Time on each level (the last half is averaged), s")
+      ->check(CLI::Range(0.05, 100.0))->capture_default_str();
+  kfc->add_option("--nodes", kf->max_nodes, "Most table nodes (the block holds 16)")
+      ->check(CLI::Range(2, 16))->capture_default_str();
+  auto kv_mm = std::make_shared<double>(kf->k_v_N_per_m * 1e-3);
+  kfc->add_option("--kv-N-per-mm", *kv_mm, "Return springs k_v, N/mm (known: the balance needs it)")
+      ->check(kPositive)->capture_default_str();
+  kfc->add_option("--rate-Hz", kf->stream_rate_Hz, "Stream rate, Hz")->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+  auto ram_only = std::make_shared<bool>(false);
+  kfc->add_flag("--ram-only", *ram_only, "Set the table in the device's RAM only; do not commit it to flash");
+  kfc->callback([&ctx, kf, kv_mm, ram_only] {
+    kf->k_v_N_per_m = *kv_mm * 1e3;
+    kf->write = true;
+    kf->commit = !*ram_only;
+    ctx.action = [&ctx, kf] { return calibrate_kf(ctx, *kf); };
+  });
 }
 
 }  // namespace palpctl

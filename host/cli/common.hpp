@@ -54,6 +54,9 @@ void add_trace_command(CLI::App& app, Context& ctx);  // trace, touch-off
 void add_analyze_command(CLI::App& app, Context& ctx);  // analyze indentation|pressure|boyle
 void add_indent_command(CLI::App& app, Context& ctx);
 void add_map_command(CLI::App& app, Context& ctx);
+void add_sweep_commands(CLI::App& app, Context& ctx);  // freeair, sweep
+/// analyze sweep | freeair (registered by add_analyze_command).
+void add_analyze_sweep_commands(CLI::App* analyze, Context& ctx);
 /// palpctl analyze map (registered with the other analyze commands, run by cmd_map.cpp).
 int analyze_map_command(const Context& ctx, const std::string& dir,
                         const palp::analysis::IndentationParams& params, bool kf_table, double contrast);
