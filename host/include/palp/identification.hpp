@@ -150,6 +150,10 @@ struct KfCalibrationSettings {
   double k_v_N_per_m = 43.9;
   double stream_rate_Hz = 500;
   bool write = true, commit = false;
+  /// Free-air balances fix K_f only up to a constant's share (kf_calibration.hpp, KfAnchor):
+  /// the fit is anchored at a known K_f, by default the paper's 2.918 N/A at 24 mm of travel
+  /// (§II-A); nullopt fits without one (then the result's warning may say it is unreliable).
+  std::optional<analysis::KfAnchor> anchor = analysis::KfAnchor{0.024, 2.918};
   void validate() const;
 };
 struct KfCalibrationRun {

@@ -46,6 +46,8 @@ void KfCalibrationSettings::validate() const {
   require(finite(k_v_N_per_m) && k_v_N_per_m > 0, "k_v_N_per_m must be positive");
   require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= 1000,
           "stream_rate_Hz must lie in (0, 1000] Hz");
+  require(!anchor || (finite(anchor->stroke_m) && finite(anchor->kf_N_per_A) && anchor->kf_N_per_A > 0),
+          "anchor must have a finite stroke and a positive K_f");
   require(!commit || write, "commit needs write (only the table written to RAM can be committed)");
 }
 
@@ -85,7 +87,9 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
 
   run.points = analysis::kf_static_points(run.recording, ramp, rate, origin_z_m, settings.settled_fraction);
   const std::vector<double> nodes = analysis::kf_nodes_for(run.points, settings.max_nodes);
-  run.calibration = analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
+  run.calibration = settings.anchor
+                        ? analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes, *settings.anchor)
+                        : analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
 
   // the sidecar keeps the calibration in force while the staircase ran
   Sidecar side = ident::base_sidecar(probe, device, "kf_calibration", rec);
@@ -123,6 +127,10 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
   side.extra["kf_calibration"] = {{"settled_fraction", settings.settled_fraction},
                                   {"max_nodes", settings.max_nodes},
                                   {"k_v_N_per_mm", settings.k_v_N_per_m * 1e-3},
+                                  {"anchor", settings.anchor ? nlohmann::json{{"position_mm", settings.anchor->stroke_m * 1e3},
+                                                                              {"kf_N_per_A", settings.anchor->kf_N_per_A}}
+                                                             : nlohmann::json(nullptr)},
+                                  {"warning", run.calibration.warning},
                                   {"written", run.written},
                                   {"committed", run.committed}};
   run.recording.sidecar = side;
