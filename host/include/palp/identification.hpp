@@ -8,13 +8,15 @@
 //   if (run.fit) use(run.fit->omega_n_rad_per_s, run.fit->zeta);
 //
 // identify() at the current position, in this order:
-//   0. release the coil if a program or contact hold carries current (settle_s at 0 A);
-//   1. check the settings before anything moves: in contact, the excitation's true peak must
-//      stay above the contact threshold, bias_A - peak > I_c (for a multisine, the waveform's
-//      own peak); in free air, the peak excursion predicted from `instrument` and K_f over the
-//      band must stay within max_excursion_m (3 mm). Refusals are ConfigError with the numbers;
-//   2. float the coil at the contact threshold (a contact watch, as indent() does), hold the bias
-//      for settle_s;
+//   0. check the settings (validate(), then check_excitation() at the device's control rate)
+//      before the device does anything: in contact, the excitation's true peak must stay above
+//      the contact threshold, bias_A - peak > I_c (for a multisine, the waveform's own peak); in
+//      free air, the peak excursion predicted from `instrument` and K_f over the band must stay
+//      within max_excursion_m (3 mm). Refusals are ConfigError with the numbers;
+//   1. release the coil if a program or contact hold carries current (settle_s at 0 A);
+//   2. float the coil at the contact threshold (a contact watch, as indent() does), then hold the
+//      bias with a second contact watch that fires on the first micrometre the step moves the
+//      coil (a fired watch keeps its current on until the next program starts), for settle_s;
 //   3. run the device program (LoadSweep or LoadMultisine) while recording the stream (every
 //      sample the program drives, at stream_rate_Hz);
 //   4. back to 0 A; the nonparametric response (frequency_response.hpp) and the second-order fit

@@ -85,7 +85,7 @@ struct Reader {
   std::string where;
   const nlohmann::json& at(const char* key) const {
     if (!j.is_object() || !j.contains(key))
-      throw ConfigError(where + " has no \"" + key + "\": the recording cannot be re-analysed");
+      throw ConfigError(where + ": no \"" + key + "\" (the recording cannot be re-analysed)");
     return j[key];
   }
   double num(const char* key) const {

@@ -187,8 +187,8 @@ TEST(Identification, SidecarWithoutTheSettingsIsRefusedNamingWhatIsMissing) {
     (void)palp::identification_run_of(rec);
     FAIL() << "no throw";
   } catch (const palp::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "the identification settings has no \"kf_N_per_A\": the recording "
-                           "cannot be re-analysed");
+    EXPECT_STREQ(e.what(), "the identification settings: no \"kf_N_per_A\" (the recording "
+                           "cannot be re-analysed)");
   }
 }
 
