@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "common.hpp"
 #include "palp/identification.hpp"
@@ -73,6 +74,10 @@ int calibrate_kf(const Context& ctx, const palp::KfCalibrationSettings& settings
             {"c_N", c.c_N},
             {"c_N_se", c.c_se_N},
             {"residual_rms_N", c.residual_rms_N},
+            {"anchor", settings.anchor ? json{{"stroke_mm", mm_from_m(settings.anchor->stroke_m)},
+                                              {"kf_N_per_A", settings.anchor->kf_N_per_A}}
+                                       : json(nullptr)},
+            {"warning", c.warning},
             {"written", run.written},
             {"committed", run.committed}};
   if (ctx.json) {
@@ -85,6 +90,7 @@ int calibrate_kf(const Context& ctx, const palp::KfCalibrationSettings& settings
                 run.committed ? "committed to the device's flash"
                 : run.written ? "set in RAM only (lost at power-off)"
                               : "not written to the device");
+    if (!c.warning.empty()) std::printf("warning: %s\n", c.warning.c_str());
   }
   return kOk;
 }
@@ -138,10 +144,23 @@ void add_calibrate_command(CLI::App& app, Context& ctx) {
   kfc->add_option("--kv-N-per-mm", *kv_mm, "Return springs k_v, N/mm (known: the balance needs it)")
       ->check(kPositive)->capture_default_str();
   kfc->add_option("--rate-Hz", kf->stream_rate_Hz, "Stream rate, Hz")->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+  auto anchor = std::make_shared<std::pair<double, double>>(kf->anchor->stroke_m * 1e3, kf->anchor->kf_N_per_A);
+  auto* anchor_mm = kfc->add_option("--anchor-mm", anchor->first,
+                                    "The balance fixes K_f only up to a constant's share: anchor it at this "
+                                    "stroke position (from the stroke origin), mm")
+                        ->check(kNonNegative)->capture_default_str();
+  auto* anchor_kf = kfc->add_option("--anchor-kf-N-per-A", anchor->second,
+                                    "... to this known K_f there, N/A (the paper: 2.918 at 24 mm of travel)")
+                        ->check(kPositive)->capture_default_str();
+  auto no_anchor = std::make_shared<bool>(false);
+  kfc->add_flag("--no-anchor", *no_anchor, "Fit without an anchor (the result warns when c, and with it K_f, is poorly determined)")
+      ->excludes(anchor_mm)->excludes(anchor_kf);
   auto ram_only = std::make_shared<bool>(false);
   kfc->add_flag("--ram-only", *ram_only, "Set the table in the device's RAM only; do not commit it to flash");
-  kfc->callback([&ctx, kf, kv_mm, ram_only] {
+  kfc->callback([&ctx, kf, kv_mm, ram_only, anchor, no_anchor] {
     kf->k_v_N_per_m = *kv_mm * 1e3;
+    if (*no_anchor) kf->anchor.reset();
+    else kf->anchor = palp::analysis::KfAnchor{anchor->first * 1e-3, anchor->second};
     kf->write = true;
     kf->commit = !*ram_only;
     ctx.action = [&ctx, kf] { return calibrate_kf(ctx, *kf); };

@@ -203,3 +203,71 @@ TEST_F(PalpctlSweepSim, FreeAirExcursionIsCheckedBeforeAnythingMoves) {
 
 }  // namespace
 }  // namespace palpctl::test
+
+namespace palpctl::test {
+namespace {
+
+// palp-sim without a phantom: the probe in free air
+class PalpctlFreeAirSim : public PalpctlAnalyzeSweep {
+ protected:
+  void SetUp() override {
+    PalpctlAnalyzeSweep::SetUp();
+    ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
+  }
+  ProcessResult run(std::vector<std::string> args, double timeout_s = 120) {
+    EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
+    args.insert(args.begin(), {"--uri", sim_.uri()});
+    return palpctl(args, timeout_s);
+  }
+  SimServer sim_{{}};
+};
+
+TEST_F(PalpctlFreeAirSim, FreeairGivesThePlantsMovingMassAndDampingAndFeedsSweep) {
+  const auto r = run({"--json", "freeair"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  // the plant: m_v 0.161 kg, b_v 1.38 N s/m (hil/plant config.hpp); the 2 % and 5 %
+  EXPECT_NEAR(j["free_air"]["m_v_kg"].get<double>(), 0.161, 0.02 * 0.161);
+  EXPECT_NEAR(j["free_air"]["b_v_N_s_per_m"].get<double>(), 1.38, 0.05 * 1.38);
+  EXPECT_EQ(j["method"], "multisine");
+  EXPECT_NEAR(j["f_lo_Hz"].get<double>(), 1.05, 1e-9);  // lines 4k+1 of the 0.05 Hz grid from 1 Hz
+  bool grid_note = false;
+  for (const auto& n : j["notes"]) grid_note = grid_note || n.get<std::string>().rfind("one excited line every 0.2 Hz", 0) == 0;
+  EXPECT_TRUE(grid_note) << j["notes"].dump();
+
+  // its output is what sweep --freeair and analyze sweep --freeair read
+  const fs::path fa = dir_ / "freeair.json";
+  std::ofstream(fa) << r.out;
+  const auto a = palpctl({"--json", "analyze", "sweep", "--input", table("c.csv", false), "--freeair", fa.string()});
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(json::parse(a.out)["params"]["mv_kg"], j["free_air"]["m_v_kg"]);
+}
+
+TEST_F(PalpctlFreeAirSim, CalibrateKfWritesTheAnchoredTableIntoTheDevice) {
+  const auto r = run({"--json", "calibrate", "kf", "--ram-only"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["written"], true);
+  EXPECT_EQ(j["committed"], false);
+  EXPECT_EQ(j["anchor"]["stroke_mm"], 24.0);
+  ASSERT_EQ(j["nodes"].size(), 16u);
+  // the plant's table (config.hpp): 2.918 N/A from 23.5 mm on, rising linearly to 3.84 at 17 mm
+  for (const auto& n : j["nodes"]) {
+    const double s = n["stroke_mm"].get<double>();
+    const double truth = s >= 23.5 ? 2.918 : s >= 17 ? 2.918 + (23.5 - s) * (3.84 - 2.918) / 6.5
+                                                    : 3.84 + (17 - s) * (3.30 - 3.84) / 17;
+    EXPECT_NEAR(n["kf_N_per_A"].get<double>(), truth, 0.02 * truth) << s << " mm";
+  }
+  // and the device now holds it
+  const auto info = run({"--json", "info"});
+  ASSERT_EQ(info.code, 0) << info.err;
+  const json table = json::parse(info.out)["calibration"]["kf_table"];
+  ASSERT_EQ(table.size(), 16u) << table.dump();
+  for (std::size_t k = 0; k < 16; ++k) {
+    EXPECT_NEAR(table[k]["position_mm"].get<double>(), j["nodes"][k]["stroke_mm"].get<double>(), 0.001);  // 1 count
+    EXPECT_NEAR(table[k]["kf_N_per_A"].get<double>(), j["nodes"][k]["kf_N_per_A"].get<double>(), 1e-6);  // f32
+  }
+}
+
+}  // namespace
+}  // namespace palpctl::test

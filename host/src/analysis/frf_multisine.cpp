@@ -290,6 +290,11 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   }
   if (empty.empty())
     out.notes.push_back("no empty lines between the excited ones: no distortion estimate");
+  else
+    out.notes.push_back(strf("one excited line every %.4g Hz (1 in %u lines of the %.4g Hz period "
+                             "grid): coarser than a stepped sine's 0.05 Hz grid on purpose, the empty "
+                             "lines between measure noise and distortion in the same run",
+                             out.line_spacing_Hz, static_cast<unsigned>(program.line_step), rate / P));
   out.distortion = dist;
   return out;
 }
