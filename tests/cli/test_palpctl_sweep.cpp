@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -148,8 +149,10 @@ TEST_F(PalpctlAnalyzeSweep, TableWithTheOtherSignConventionIsFlagged) {
 
 // --- against palp-sim ---------------------------------------------------------------------
 
-class PalpctlSweepSim : public PalpctlAnalyzeSweep {
+/// palpctl against a palp-sim started with `sim_args`.
+class PalpctlOnSim : public PalpctlAnalyzeSweep {
  protected:
+  explicit PalpctlOnSim(std::vector<std::string> sim_args) : sim_(std::move(sim_args)) {}
   void SetUp() override {
     PalpctlAnalyzeSweep::SetUp();
     ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
@@ -159,8 +162,19 @@ class PalpctlSweepSim : public PalpctlAnalyzeSweep {
     args.insert(args.begin(), {"--uri", sim_.uri()});
     return palpctl(args, timeout_s);
   }
-  // solid_1d, position 3, the floating tip just touching (the paper's start in contact)
-  SimServer sim_{{"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}};
+  SimServer sim_;
+};
+
+// solid_1d, position 3, the floating tip just touching (the paper's start in contact)
+class PalpctlSweepSim : public PalpctlOnSim {
+ protected:
+  PalpctlSweepSim() : PalpctlOnSim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}) {}
+};
+
+// no phantom: the probe in free air
+class PalpctlFreeAirSim : public PalpctlOnSim {
+ protected:
+  PalpctlFreeAirSim() : PalpctlOnSim({}) {}
 };
 
 TEST_F(PalpctlSweepSim, MultisineResultReanalysesTheSameFromItsRecordingAndItsTable) {
@@ -200,27 +214,6 @@ TEST_F(PalpctlSweepSim, FreeAirExcursionIsCheckedBeforeAnythingMoves) {
   EXPECT_EQ(r.err, "palpctl: identification: free air, the predicted peak excursion 13.26 mm over 1-10 Hz "
                    "exceeds 3 mm: lower amplitude_A below 0.02262 A\n");
 }
-
-}  // namespace
-}  // namespace palpctl::test
-
-namespace palpctl::test {
-namespace {
-
-// palp-sim without a phantom: the probe in free air
-class PalpctlFreeAirSim : public PalpctlAnalyzeSweep {
- protected:
-  void SetUp() override {
-    PalpctlAnalyzeSweep::SetUp();
-    ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
-  }
-  ProcessResult run(std::vector<std::string> args, double timeout_s = 120) {
-    EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
-    args.insert(args.begin(), {"--uri", sim_.uri()});
-    return palpctl(args, timeout_s);
-  }
-  SimServer sim_{{}};
-};
 
 TEST_F(PalpctlFreeAirSim, FreeairGivesThePlantsMovingMassAndDampingAndFeedsSweep) {
   const auto r = run({"--json", "freeair"});

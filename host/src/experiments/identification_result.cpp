@@ -139,19 +139,9 @@ fs::path write_identification_result(const fs::path& dir_in, const Identificatio
                                      const json& analysis, Overwrite overwrite) {
   if (run.recording.size() == 0)
     throw ConfigError("write_identification_result: the run has no samples; nothing to write");
-  const fs::path dir = fs::absolute(dir_in).lexically_normal();
-  if (dir.filename().empty())
-    throw ConfigError("write_identification_result: " + dir_in.string() + " names no directory");
-  std::error_code ec;
-  fs::create_directories(dir.parent_path(), ec);
-  if (ec) throw RecordingError(dir.parent_path().string(), 0, "cannot create: " + ec.message());
-  if (fs::exists(dir) && overwrite == Overwrite::no)
-    throw ConfigError(dir_in.string() + " already exists; choose another directory, or overwrite it");
+  const fs::path dir = prepare_result_directory(dir_in, overwrite, "write_identification_result");
 
-  json summary = {{"schema", kResultSchema},
-                  {"experiment", "identification"},
-                  {"created_utc", utc_now()},
-                  {"sdk_version", sdk_version()}};
+  json summary = result_head("identification");
   const auto& sc = run.recording.sidecar;
   summary["device"] = sc ? sc->device : device_json(run.device);
   summary["firmware_version"] = run.device.firmware_version;

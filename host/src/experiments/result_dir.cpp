@@ -11,6 +11,8 @@
 #include <ctime>
 
 #include "palp/error.hpp"
+#include "palp/probe.hpp"
+#include "palp/result.hpp"
 
 namespace palp {
 
@@ -60,6 +62,21 @@ void write_text_file(const fs::path& p, const std::string& text) {
   const int e = errno;
   ::close(fd);
   if (!synced) throw RecordingError(p.string(), 0, std::string("cannot flush: ") + std::strerror(e));
+}
+
+fs::path prepare_result_directory(const fs::path& dir_in, Overwrite overwrite, const char* who) {
+  const fs::path dir = fs::absolute(dir_in).lexically_normal();
+  if (dir.filename().empty()) throw ConfigError(std::string(who) + ": " + dir_in.string() + " names no directory");
+  std::error_code ec;
+  fs::create_directories(dir.parent_path(), ec);
+  if (ec) throw RecordingError(dir.parent_path().string(), 0, "cannot create: " + ec.message());
+  if (fs::exists(dir) && overwrite == Overwrite::no)
+    throw ConfigError(dir_in.string() + " already exists; choose another directory, or overwrite it");
+  return dir;
+}
+
+nlohmann::json result_head(const char* experiment) {
+  return {{"schema", kResultSchema}, {"experiment", experiment}, {"created_utc", utc_now()}, {"sdk_version", sdk_version()}};
 }
 
 void write_result_directory(const fs::path& dir, Overwrite overwrite,
