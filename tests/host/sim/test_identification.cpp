@@ -325,14 +325,14 @@ TEST(Identification, MultisineAtThreeHundredthsOfAnAmpereMatchesTheLinearisation
 }
 
 TEST(Identification, SteppedSineOnTheSolidAtTheTenthOfAnAmpereMatchesTheLinearisation) {
-  if (kSanitized) GTEST_SKIP() << "665 s of device time: the release build runs it";
+  if (kSanitized) GTEST_SKIP() << "687 s of device time: the release build runs it";
   const Errors e = contact_errors("solid_1d", SweepMethod::stepped, 0.1);
   EXPECT_LT(std::fabs(e.omega_n), 0.01);
   EXPECT_LT(std::fabs(e.zeta), 0.08);
 }
 
 TEST(Identification, SteppedSineOnTheHollowAtThreeHundredthsOfAnAmpereMatchesTheLinearisation) {
-  if (kSanitized) GTEST_SKIP() << "665 s of device time: the release build runs it";
+  if (kSanitized) GTEST_SKIP() << "687 s of device time: the release build runs it";
   const Errors e = contact_errors("hollow_1d", SweepMethod::stepped, 0.03);
   EXPECT_LT(std::fabs(e.omega_n), 0.005);
   EXPECT_LT(std::fabs(e.zeta), 0.05);
