@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "identification_common.hpp"
+#include "experiment_common.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 
@@ -12,7 +12,7 @@ namespace palp {
 
 namespace {
 
-using ident::f32;
+using experiment::f32;
 
 constexpr std::uint32_t kFloatCounts = 500;  // the coil left its rear stop (0.5 mm)
 constexpr double kSameCurrent_A = 1e-3;      // a bias this close to I_c needs no second hold
@@ -49,7 +49,7 @@ void float_and_hold_bias(Probe& probe, const IdentificationSettings& s,
                          10.0, std::nullopt);
   }
   phase("settling");
-  ident::wait_device_time(probe, event->t_device_s + s.settle_s, cancelled);
+  experiment::wait_device_time(probe, event->t_device_s + s.settle_s, cancelled);
 }
 
 nlohmann::json sweep_json(const proto::LoadSweep& m) {
@@ -224,11 +224,11 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
     progress(IdentifyProgress{phase, std::clamp(fraction, 0.0, 1.0), f_Hz});
   };
 
-  ident::release_coil(probe, settings.settle_s, cancelled, [&] { report("releasing the coil", 0, 0); });
+  experiment::release_coil(probe, settings.settle_s, cancelled, [&] { report("releasing the coil", 0, 0); });
   probe.configure_stream({.rate_Hz = settings.stream_rate_Hz});
 
   const char* program_phase = stepped ? "stepped sine" : "multisine";
-  ident::ProgramRecording rec;
+  experiment::ProgramRecording rec;
   try {
     float_and_hold_bias(probe, settings, [&](const char* p) { report(p, 0, 0); }, cancelled);
   } catch (...) {
@@ -239,7 +239,7 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
     probe.stop();
     rec.interrupted = true;
   } else {
-    rec = ident::record_program(
+    rec = experiment::record_program(
         probe,
         [&] {
           if (stepped) {
@@ -266,7 +266,7 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
   run.samples_missing = rec.samples_missing;
   run.recording = std::move(rec.recording);
 
-  Sidecar side = ident::base_sidecar(probe, run.device, "identification", rec);
+  Sidecar side = experiment::base_sidecar(probe, run.device, "identification", rec);
   side.program = {{"kind", stepped ? "sweep" : "multisine"},
                   {"parameters", stepped ? sweep_json(run.sweep) : multisine_json(run.multisine)},
                   {"result",

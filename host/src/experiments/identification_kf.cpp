@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "identification_common.hpp"
+#include "experiment_common.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 #include "palp/protocol/program_schedule.hpp"
@@ -61,7 +61,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
   };
   const DeviceInfo device = probe.info();
   const auto rate = static_cast<std::uint32_t>(std::lround(device.control_rate_Hz));
-  ident::release_coil(probe, 1.0, {}, [&] { report("releasing the coil", 0); });
+  experiment::release_coil(probe, 1.0, {}, [&] { report("releasing the coil", 0); });
   // the table's positions are from the stroke origin: home first when it is not known
   if (probe.calibration().stroke_origin_valid == 0) {
     report("homing", 0);
@@ -73,7 +73,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
   const proto::LoadRamp ramp = ramp_of(settings);
   const double duration_s =
       static_cast<double>(proto::ramp_timing(ramp, rate).total_ticks) / static_cast<double>(rate);
-  ident::ProgramRecording rec = ident::record_program(
+  experiment::ProgramRecording rec = experiment::record_program(
       probe,
       [&] {
         probe.load(ramp);
@@ -92,7 +92,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
                         : analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
 
   // the sidecar keeps the calibration in force while the staircase ran
-  Sidecar side = ident::base_sidecar(probe, device, "kf_calibration", rec);
+  Sidecar side = experiment::base_sidecar(probe, device, "kf_calibration", rec);
   if (settings.write) {
     Calibration cal = probe.calibration();
     cal.kf_position_counts = {};
@@ -112,10 +112,10 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
 
   side.program = {{"kind", "ramp"},
                   {"parameters",
-                   {{"start_A", ident::f32(ramp.start_A)},
-                    {"stop_A", ident::f32(ramp.stop_A)},
-                    {"step_A", ident::f32(ramp.step_A)},
-                    {"dwell_s", ident::f32(ramp.dwell_s)},
+                   {{"start_A", experiment::f32(ramp.start_A)},
+                    {"stop_A", experiment::f32(ramp.stop_A)},
+                    {"step_A", experiment::f32(ramp.step_A)},
+                    {"dwell_s", experiment::f32(ramp.dwell_s)},
                     {"reps", ramp.repetitions},
                     {"unload", true},
                     {"displacement_limit_mm", 0.0}}},

@@ -1,57 +1,23 @@
 // The quasi-static indentation (experiments.hpp): zero pressures, float the coil, stream the
 // device's staircase ramp into a recording, analyse it.
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <future>
-#include <thread>
-#include <variant>
-#include <vector>
+#include <utility>
 
 #include "palp/experiments.hpp"
 #include "palp/result.hpp"
+#include "experiment_common.hpp"
 
 namespace palp {
 
 namespace {
 
-using std::chrono::milliseconds;
-using Clock = std::chrono::steady_clock;
+using experiment::f32;
+using experiment::wait_device_time;
 
-constexpr unsigned kRunningBit = 1u << static_cast<unsigned>(proto::StatusBit::program_running);
 constexpr std::uint32_t kFloatCounts = 500;  // the coil left its rear stop (0.5 mm)
 constexpr double kCountM = 1e-6;
-
-milliseconds ms_from_s(double s) { return milliseconds(static_cast<long long>(std::ceil(s * 1e3))); }
-
-/// The shortest decimal of a protocol f32 as a double (0.01f reads 0.01, not 0.009999999776).
-double f32(float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  double d = 0;
-  std::from_chars(buf, r.ptr, d);
-  return d;
-}
-
-RecordingRow row_of(const Sample& s) {
-  return {.sample_index = s.index,
-          .t_s = s.t_device_s,
-          .i_cmd_A = s.i_cmd_A,
-          .i_A = s.i_A,
-          .z_mm = static_cast<double>(s.encoder_counts) * 1e-3,
-          .p_Pa = s.p_Pa,
-          .status = s.status,
-          .rep = 0};
-}
-
-void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled) {
-  while (probe.status().t_device_s < until_s) {
-    if (cancelled && cancelled()) return;
-    std::this_thread::sleep_for(1ms);
-  }
-}
 
 /// Floats the coil at the ramp's start current and lets it settle on the specimen; returns the
 /// encoder position it rests at, m.
@@ -106,126 +72,45 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
   // the coil at 0 A and at rest first: a program left running, or a contact watch that ended
   // holding its current (the toucher's float), would load the specimen while the pressures are
   // zeroed and keep the coil from leaving its rear stop when it is floated again
-  if (const Status st = probe.status();
-      st.program_state == proto::ProgramState::running || std::fabs(st.i_cmd_A) > 1e-3) {
-    report("releasing the coil", 0, nullptr);
-    probe.stop();
-    wait_device_time(probe, st.t_device_s + settings.settle_s, cancelled);
-  }
+  experiment::release_coil(probe, settings.settle_s, cancelled,
+                           [&] { report("releasing the coil", 0, nullptr); });
   if (settings.zero_pressure) {
     report("zeroing pressures", 0, nullptr);
     probe.zero_pressure(settings.zero_pressure_s);
   }
-  const StreamInfo stream = probe.configure_stream({.rate_Hz = settings.stream_rate_Hz});
+  probe.configure_stream({.rate_Hz = settings.stream_rate_Hz});
 
-  std::vector<Sample> samples;
-  nlohmann::json gaps = nlohmann::json::array();
-  std::exception_ptr error;
-  std::future<ProgramResult> done;
-  bool streaming = false;
-  try {
-    report("floating the coil", 0, nullptr);
-    run.float_z_m = float_coil(probe, settings, cancelled);
-    if (cancelled && cancelled()) {
-      run.interrupted = true;
-    } else {
-      probe.start_stream();
-      streaming = true;
-      probe.load(settings.ramp_program());
-      probe.start();
-      const double wait_s = 2 * settings.ramp_duration_s() + 30;
-      done = std::async(std::launch::async, [&probe, wait_s] { return probe.wait(ms_from_s(wait_s)); });
-      std::vector<StreamItem> items;
-      double t0 = -1;
-      auto last_report = Clock::now();
-      bool stopping = false;
-      for (;;) {
-        items.clear();
-        if (auto it = probe.next(20ms)) {
-          items.push_back(*it);
-          probe.drain(items);
-        }
-        for (const auto& item : items) {
-          if (const auto* g = std::get_if<Gap>(&item)) {
-            run.samples_missing += g->count;
-            gaps.push_back({{"first_index", g->first_index},
-                            {"count", g->count},
-                            {"source", gap_source_name(g->source)},
-                            {"t_device_s", g->t_device_s}});
-          } else {
-            const auto& s = std::get<Sample>(item);
-            if ((s.status & kRunningBit) == 0) continue;  // before the ramp or after its end
-            if (t0 < 0) t0 = s.t_device_s;
-            samples.push_back(s);
-          }
-        }
-        if (!samples.empty() && Clock::now() - last_report > 200ms) {
-          last_report = Clock::now();
-          report("ramp", (samples.back().t_device_s - t0) / settings.ramp_duration_s(), &samples.back());
-        }
-        if (!stopping && cancelled && cancelled()) {
-          stopping = true;
-          run.interrupted = true;
-          probe.stop();
-        }
-        if (done.wait_for(0ms) == std::future_status::ready) {
-          run.program = done.get();
-          break;
-        }
-      }
-    }
-  } catch (...) {
-    error = std::current_exception();
+  report("floating the coil", 0, nullptr);
+  run.float_z_m = float_coil(probe, settings, cancelled);
+  experiment::ProgramRecording recorded;
+  if (cancelled && cancelled()) {
+    recorded.interrupted = true;
+    probe.stop();  // the float's contact hold back to 0 A
+  } else {
+    const double ramp_s = settings.ramp_duration_s();
+    recorded = experiment::record_program(
+        probe, [&] { probe.load(settings.ramp_program()); probe.start(); }, ramp_s,
+        [&](double elapsed_s, const Sample& last) { report("ramp", elapsed_s / ramp_s, &last); }, cancelled);
   }
-  // the coil back to 0 A, and the rest of the stream
-  try {
-    probe.stop();
-    if (done.valid()) done.wait();
-    if (streaming) {
-      probe.stop_stream();
-      while (auto it = probe.next(100ms))
-        if (const auto* s = std::get_if<Sample>(&*it); s && (s->status & kRunningBit) != 0)
-          samples.push_back(*s);
-    }
-  } catch (...) {
-    if (!error) error = std::current_exception();
-  }
-  if (error) std::rethrow_exception(error);
-  if (!samples.empty()) report("ramp", 1.0, &samples.back());
-
+  run.interrupted = recorded.interrupted;
+  run.samples_missing = recorded.samples_missing;
+  run.program = recorded.program;
+  run.recording = std::move(recorded.recording);
   Recording& rec = run.recording;
-  for (const Sample& s : samples) rec.append(row_of(s));
   if (rec.size() > 0) {
+    report("ramp", 1.0, nullptr);
     rec.rep = split_repetitions_at_current_minima(*rec.i_cmd_A);
   }
 
-  Sidecar side;
+  Sidecar side = experiment::base_sidecar(probe, run.device, "indentation", recorded);
   side.program = {{"kind", "ramp"},
                   {"parameters", ramp_json(settings)},
                   {"result",
                    {{"end", proto::enum_name(run.program.end) ? proto::enum_name(run.program.end) : "?"},
                     {"t_device_s", run.program.t_device_s},
                     {"repetitions_done", run.program.repetitions_done}}}};
-  side.device = device_json(run.device);
-  side.device["uri"] = probe.uri();
-  const Calibration cal = probe.calibration();
-  side.calibration = calibration_json(cal);
-  if (cal.stroke_origin_valid != 0) {
-    side.stroke_origin_z_mm = cal.stroke_origin_counts * 1e-3;
-  } else {
-    side.stroke_origin_z_mm_reason = "the device's stroke origin is not homed (palpctl calibrate home)";
-  }
-  for (const auto& z : probe.zeroing()) side.zeroing.push_back(zeroing_json(z));
-  side.extra["experiment"] = "indentation";
-  side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
-                          {"period_s", stream.period_s},
-                          {"channels", stream.channels}};
-  side.extra["gaps"] = gaps;
-  side.extra["samples_missing"] = run.samples_missing;
   side.extra["float_z_mm"] = run.float_z_m * 1e3;
   side.extra["settle_s"] = settings.settle_s;
-  side.extra["interrupted"] = run.interrupted;
-  side.sdk_version = sdk_version();
   rec.sidecar = side;
 
   analyze_run(run);

@@ -1,5 +1,5 @@
-// Shared by identify() and calibrate_kf(): see identification_common.hpp.
-#include "identification_common.hpp"
+// Shared by the experiments: see experiment_common.hpp.
+#include "experiment_common.hpp"
 
 #include <charconv>
 #include <chrono>
@@ -11,7 +11,7 @@
 
 #include "palp/result.hpp"
 
-namespace palp::ident {
+namespace palp::experiment {
 
 namespace {
 
@@ -159,4 +159,4 @@ Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& 
   return side;
 }
 
-}  // namespace palp::ident
+}  // namespace palp::experiment

@@ -1,5 +1,5 @@
-// What identify() and calibrate_kf() share: releasing the coil, recording the samples a device
-// program drives, and the sidecar's common part (device, calibration, stroke origin, stream).
+// What the experiments (indent(), identify(), calibrate_kf()) share: releasing the coil, recording
+// the samples a device program drives, and the sidecar's common part (device, calibration, stroke origin, stream).
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,7 @@
 #include "palp/probe.hpp"
 #include "palp/recording.hpp"
 
-namespace palp::ident {
+namespace palp::experiment {
 
 /// The shortest decimal of a protocol f32 as a double (0.01f reads 0.01).
 double f32(float v);
@@ -50,4 +50,4 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
 Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
                      const ProgramRecording& r);
 
-}  // namespace palp::ident
+}  // namespace palp::experiment
