@@ -42,6 +42,7 @@ bool is_table(const std::string& file) {
 int analyze_sweep(const Context& ctx, const AnalyzeSweepCli& a) {
   SweepCli o = a.sweep;
   an::Frf frf;
+  std::optional<an::SecondOrderFit> fit;  // a recording's, fitted with the settings it was run with
   std::optional<double> bias;
   bool free_air = a.free_air;
   if (is_table(o.input)) {
@@ -69,9 +70,10 @@ int analyze_sweep(const Context& ctx, const AnalyzeSweepCli& a) {
     palp::analyze_identification(run);
     if (!run.frf || !run.fit) throw palp::ConfigError("analyze sweep: " + run.analysis_reason);
     frf = *run.frf;
+    fit = *run.fit;
   }
-  const an::SecondOrderFit fit = an::fit_second_order(frf.lines);
-  const json j = analysis_json(o, frf, fit, bias, free_air);
+  if (!fit) fit = an::fit_second_order(frf.lines);
+  const json j = analysis_json(o, frf, *fit, bias, free_air);
   if (ctx.json) print_json(j);
   else print_analysis(j);
   return kOk;

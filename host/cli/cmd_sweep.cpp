@@ -32,16 +32,22 @@ int sweep(const Context& ctx, const SweepCli& o, bool free_air) {
               << " s of device time\n";
   Progress progress(name, static_cast<std::uint64_t>(std::llround(device_s)), !ctx.json, "s of device time");
   std::string phase;
+  std::uint64_t done_s = 0;
   const palp::IdentificationRun run = palp::identify(
       probe, settings,
       [&](const palp::IdentifyProgress& p) {
         const bool exciting = p.phase == "stepped sine" || p.phase == "multisine";
-        if (!ctx.json && !exciting && p.phase != phase) std::cerr << name << ": " << p.phase << '\n';
+        if (exciting) {
+          done_s = static_cast<std::uint64_t>(std::llround(p.fraction * device_s));
+          progress.update(done_s);
+        } else if (p.phase != phase) {
+          if (p.phase == "analysing") progress.finish(done_s);
+          if (!ctx.json) std::cerr << name << ": " << p.phase << '\n';
+        }
         phase = p.phase;
-        if (exciting) progress.update(static_cast<std::uint64_t>(p.fraction * device_s));
       },
       [] { return interrupted(); });
-  progress.finish(run.interrupted ? 0 : static_cast<std::uint64_t>(std::llround(device_s)));
+  if (phase != "analysing") progress.finish(done_s);
   if (run.recording.size() == 0) {
     std::cerr << "palpctl: " << name << (run.interrupted ? " interrupted before the excitation; nothing written\n"
                                                          : ": the excitation gave no samples\n");

@@ -177,8 +177,8 @@ void add_program_options(CLI::App* cmd, SweepCli& o) {
       ->check(CLI::Range(1u, 0xFFFFFFFFu))->capture_default_str();
   cmd->add_option("--phases", o.phases, "Multisine: random or schroeder phases")
       ->check(CLI::IsMember({"random", "schroeder"}))->capture_default_str();
-  cmd->add_option("--rate-Hz", o.rate_Hz, "Stream rate, Hz (divides the control rate)")
-      ->check(CLI::Range(1.0, 20000.0))->capture_default_str();
+  cmd->add_option("--rate-Hz", o.rate_Hz, "Stream rate, Hz (at most 1000, dividing the control rate)")
+      ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
   cmd->add_option("--settle-s", o.settle_s, "Device time at the bias before the excitation, s")
       ->check(CLI::Range(0.0, 60.0))->capture_default_str();
   cmd->add_option("--ic-A", o.ic_A, "Contact threshold current I_c, A")->check(CLI::Range(-4.0, 4.0))->capture_default_str();
