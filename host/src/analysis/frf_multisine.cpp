@@ -233,7 +233,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   out.method = "multisine";
   out.line_spacing_Hz = program.line_step * rate / P;
   out.device_time_s = static_cast<double>(last) * P / rate;
-  std::vector<double> excited_abs;
+  std::vector<double> excited_abs, residual_var;
   for (std::size_t n = 0; n < l.h.size(); ++n) {
     FrfLine line;
     line.f_Hz = l.h[n] * rate / P;
@@ -244,11 +244,26 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
     if (M >= 2) {  // scatter of Z_p - G F_p over the periods
       double v = 0;
       for (std::size_t p = 0; p < M; ++p) v += std::norm(Z[n][p] - line.G_m_per_N * kf * I[n][p]);
-      v /= static_cast<double>(M - 1);
-      line.sigma_m_per_N = std::sqrt(v / (2.0 * static_cast<double>(M))) / std::abs(line.F_N);
+      residual_var.push_back(v / static_cast<double>(M - 1));
     }
     excited_abs.push_back(std::abs(line.Z_m));
     out.lines.push_back(line);
+  }
+  // Each line's scatter has only 2 (M - 1) degrees of freedom (2 with the default two periods):
+  // weights from it alone are erratic (a line with a small scatter by chance dominates the fit).
+  // The noise varies slowly with frequency, so each line's variance is pooled over its
+  // kPoolHalfWidth neighbours on each side (15 lines with the default, 28 degrees of freedom).
+  if (M >= 2) {
+    constexpr std::size_t kPoolHalfWidth = 7;
+    const std::size_t L = residual_var.size();
+    for (std::size_t n = 0; n < L; ++n) {
+      const std::size_t a = n >= kPoolHalfWidth ? n - kPoolHalfWidth : 0;
+      const std::size_t b = std::min(L, n + kPoolHalfWidth + 1);
+      double v = 0;
+      for (std::size_t k = a; k < b; ++k) v += residual_var[k];
+      v /= static_cast<double>(b - a);
+      out.lines[n].sigma_m_per_N = std::sqrt(v / (2.0 * static_cast<double>(M))) / std::abs(out.lines[n].F_N);
+    }
   }
   out.notes.insert(out.notes.end(), skipped.begin(), skipped.end());
   if (M < 2)

@@ -22,7 +22,9 @@
 // the excited lines and the empty ones between the first and the last (exact DFT bins: a period
 // is a whole number of samples), the phasors are averaged over periods, and the period-to-period
 // variance gives each line's sigma (P >= 2 measured periods; with one period sigma is 0 and the
-// note says so). A period with a gap in the stream is left out, and a note says which.
+// note says so). The variance is pooled over each line's 7 neighbours on either side: two periods
+// give one line only 2 degrees of freedom, and weights that noisy made the fit erratic (b_v off by
+// up to 12 % in free air on palp-sim, normalised cost up to 30; pooled: within 1.5 %, cost ~1). A period with a gap in the stream is left out, and a note says which.
 //
 // Errors: ConfigError naming the problem (too few samples for a line, a recording that does not
 // cover the program, stream rate not dividing the period, NaN in the data ...).
