@@ -42,13 +42,6 @@ struct BoyleCli {
   std::vector<double> channel_length_mm;
 };
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
-
 /// The 1-based file line of every data row (comments, blank lines and the header skipped), so an
 /// analysis problem can name the lines as the reader does.
 std::vector<std::size_t> data_row_lines(const std::string& file) {

@@ -10,8 +10,16 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 namespace palpctl {
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
 
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;

@@ -111,6 +111,9 @@ json to_json(const palp::ProgramResult& r);
 /// Prints a JSON object as indented "key: value" lines (the human form of the same data).
 void print_text(const json& j, int indent = 0);
 
+/// A number as the analyses print it: six significant digits.
+std::string fmt(double v);
+
 // --- progress on stderr -------------------------------------------------------------------
 /// "\r<label>: 42% (4200/10000 samples)" at most a few times per second; nothing when disabled.
 class Progress {

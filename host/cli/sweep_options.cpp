@@ -15,13 +15,6 @@ namespace an = palp::analysis;
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
-
 json read_json_file(const std::string& file, const char* option) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw palp::RecordingError(file, 0, std::string("cannot open (") + option + ")");

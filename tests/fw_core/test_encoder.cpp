@@ -5,11 +5,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include "program_test_support.hpp"
 
 namespace palp::fw {
 namespace {
 
-constexpr float kDt = 1.0f / 20000.0f;
+using test::kDt;
 
 /// The 16-bit hardware count that a true position maps to (the timer just wraps).
 std::uint16_t timer_of(std::int64_t position) {

@@ -20,12 +20,13 @@
 
 #include "palp/fw/i2t_model.hpp"
 #include "palp/fw/safety.hpp"
+#include "program_test_support.hpp"
 
 namespace palp::fw {
 namespace {
 
 constexpr double kRate_Hz = 20000.0;
-constexpr float kDt = 1.0f / 20000.0f;
+using test::kDt;
 
 proto::Params recommended_params() {
   const proto::Params p;  // the catalogue defaults

@@ -6,12 +6,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include "program_test_support.hpp"
 
 namespace palp::fw {
 namespace {
 
 using proto::FaultReason;
-constexpr float kDt = 1.0f / 20000.0f;
+using test::kDt;
 
 proto::Params test_params() {
   proto::Params p;  // clamp 3.2 A, heartbeat 500 ms (catalogue defaults)

@@ -12,6 +12,8 @@
 
 namespace palp::plant::test {
 
+inline constexpr double kR = 2.5e-3;  ///< the tip's radius, m (§II-A)
+
 /// The paper's constants for analysis (§IV-A): K_f = 2.918 N/A, I_c = 0.5 A, k_v = 43.9 N/m.
 inline constexpr double kKf = 2.918;
 inline constexpr double kIc = 0.5;

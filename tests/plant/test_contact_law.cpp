@@ -5,11 +5,12 @@
 #include <cmath>
 
 #include "palp/plant/contact.hpp"
+#include "plant_test_util.hpp"
 
 namespace palp::plant {
 namespace {
 
-constexpr double kR = 2.5e-3;
+using test::kR;
 
 TEST(Hertz, ForceAndTangentFollowTheClosedForm) {
   const ElasticPoint p = hertz_sphere(1e6, kR, 1e-3);

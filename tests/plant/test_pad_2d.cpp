@@ -16,7 +16,7 @@
 namespace palp::plant {
 namespace {
 
-constexpr double kR = 2.5e-3;
+using test::kR;
 
 const PadPhantom& pad() {
   static const auto ph = load_shipped_phantom("pad_2d");

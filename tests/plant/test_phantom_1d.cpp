@@ -7,11 +7,12 @@
 #include <limits>
 
 #include "palp/plant/phantom.hpp"
+#include "plant_test_util.hpp"
 
 namespace palp::plant {
 namespace {
 
-constexpr double kR = 2.5e-3;
+using test::kR;
 
 double tangent(const Phantom& ph, int position, double depth_m) {
   const ProbeSite s = ph.position(position);

@@ -8,11 +8,12 @@
 
 #include "palp/plant/pad_phantom.hpp"
 #include "palp/plant/plant.hpp"
+#include "plant_test_util.hpp"
 
 namespace palp::plant {
 namespace {
 
-constexpr double kR = 2.5e-3;
+using test::kR;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(SphereTouch, PlaneTiltedByThetaStopsTheApexRTimesSecantMinusOneAboveTheSurface) {

@@ -16,7 +16,7 @@
 namespace palp::plant {
 namespace {
 
-constexpr double kR = 2.5e-3;
+using test::kR;
 
 ContactParams solid_position3() {
   const auto ph = load_shipped_phantom("solid_1d");

@@ -13,17 +13,10 @@
 
 #include "palp/protocol/robot_bridge/check.hpp"
 #include "palp/protocol/robot_bridge/codec.hpp"
+#include "source_file.hpp"
 
 namespace palp::proto::rb {
 namespace {
-
-std::string read(const std::string& relative) {
-  std::ifstream in(std::string(PALP_SOURCE_DIR) + "/" + relative, std::ios::binary);
-  EXPECT_TRUE(in.good()) << "cannot read " << relative;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 template <class B>
 std::vector<u16> regs_of(const B& b) {
@@ -143,7 +136,7 @@ std::vector<u16> parse_words(std::istream& in) {
 
 Vectors parse_vectors() {
   Vectors v;
-  std::istringstream file(read("protocol/vectors/robot_bridge.txt"));
+  std::istringstream file(palp::test::read_source("protocol/vectors/robot_bridge.txt"));
   std::string line, block;
   while (std::getline(file, line)) {
     std::istringstream in(line);
@@ -171,7 +164,7 @@ TEST(RobotBridgeVectors, FileIsWhatThisBuildGenerates) {
     std::ofstream(std::string(PALP_SOURCE_DIR) + "/protocol/vectors/robot_bridge.txt", std::ios::binary)
         << vectors_text();
   }
-  EXPECT_EQ(read("protocol/vectors/robot_bridge.txt"), vectors_text())
+  EXPECT_EQ(palp::test::read_source("protocol/vectors/robot_bridge.txt"), vectors_text())
       << "the map or the codec changed: if intended, bump the map version and rerun with "
          "PALP_RB_WRITE_VECTORS=1 set";
 }

@@ -10,20 +10,13 @@
 
 #include "palp/protocol/robot_bridge/check.hpp"
 #include "palp/protocol/robot_bridge/codec.hpp"
+#include "source_file.hpp"
 
 namespace palp::proto::rb {
 namespace {
 
-std::string read(const std::string& relative) {
-  std::ifstream in(std::string(PALP_SOURCE_DIR) + "/" + relative, std::ios::binary);
-  EXPECT_TRUE(in.good()) << "cannot read " << relative;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 const std::string& spec() {
-  static const std::string text = read("protocol/robot-bridge.md");
+  static const std::string text = palp::test::read_source("protocol/robot-bridge.md");
   return text;
 }
 
@@ -103,7 +96,7 @@ TEST(RobotBridgeSpec, NamesThisBuildsMapVersionPortAndBlockAddresses) {
 TEST(RobotBridgeSpec, EveryHexRegisterExampleIsAGoldenVector) {
   std::string vectors;  // "<address>: <words>" of each block vector
   {
-    std::istringstream in(read("protocol/vectors/robot_bridge.txt"));
+    std::istringstream in(palp::test::read_source("protocol/vectors/robot_bridge.txt"));
     std::string line, address;
     while (std::getline(in, line)) {
       if (line.rfind("block ", 0) == 0) address = line.substr(line.rfind(' ') + 1);

@@ -9,22 +9,15 @@
 #include "palp/protocol/spec_tables.hpp"
 #include "palp/protocol/text.hpp"
 #include "palp/protocol/vectors.hpp"
+#include "source_file.hpp"
 
 namespace palp::proto {
 namespace {
 
-std::string read(const std::string& relative) {
-  std::ifstream in(std::string(PALP_SOURCE_DIR) + "/" + relative, std::ios::binary);
-  EXPECT_TRUE(in.good()) << "cannot read " << relative;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::vector<VectorRecord> records(const std::string& relative) {
   std::vector<VectorRecord> out;
   std::string error;
-  EXPECT_TRUE(parse_vectors(read(relative), out, error)) << relative << ": " << error;
+  EXPECT_TRUE(parse_vectors(palp::test::read_source(relative), out, error)) << relative << ": " << error;
   return out;
 }
 
@@ -33,11 +26,11 @@ constexpr const char* kRegenerate =
     "`build/release-with-assertions/protocol/palp-proto vectors protocol/vectors`";
 
 TEST(GoldenVectors, MessagesFileIsWhatThisBuildGenerates) {
-  EXPECT_EQ(read("protocol/vectors/messages.txt"), golden_vectors_text()) << kRegenerate;
+  EXPECT_EQ(palp::test::read_source("protocol/vectors/messages.txt"), golden_vectors_text()) << kRegenerate;
 }
 
 TEST(GoldenVectors, MalformedFileIsWhatThisBuildGenerates) {
-  EXPECT_EQ(read("protocol/vectors/malformed.txt"), malformed_vectors_text()) << kRegenerate;
+  EXPECT_EQ(palp::test::read_source("protocol/vectors/malformed.txt"), malformed_vectors_text()) << kRegenerate;
 }
 
 TEST(GoldenVectors, EveryMessageVectorDecodesToItsExampleAndReencodesToTheSameBytes) {
@@ -133,7 +126,7 @@ TEST(VectorsParser, NamesTheLineOfAProblem) {
 }
 
 TEST(Spec, GeneratedBlocksMatchTheCatalogue) {
-  const std::string spec = read("protocol/SPEC.md");
+  const std::string spec = palp::test::read_source("protocol/SPEC.md");
   std::string error;
   const std::string fresh = refresh_spec(spec, error);
   ASSERT_TRUE(error.empty()) << error;
@@ -155,7 +148,7 @@ TEST(Spec, EveryFencedHexExampleIsTheWireOfAGoldenVector) {
   std::string wires;
   for (const char* file : {"protocol/vectors/messages.txt", "protocol/vectors/malformed.txt"})
     for (const VectorRecord& r : records(file)) wires += to_hex(r.wire) + "\n";
-  std::istringstream spec(read("protocol/SPEC.md"));
+  std::istringstream spec(palp::test::read_source("protocol/SPEC.md"));
   int examples = 0;
   bool in_block = false;
   std::string line, block;
@@ -187,7 +180,7 @@ TEST(Spec, NamesThisBuildsVersionAndSchemaHash) {
                 "This document describes **protocol %u.%u** (major %u, minor %u), schema hash "
                 "`0x%08x`",
                 kProtocolMajor, kProtocolMinor, kProtocolMajor, kProtocolMinor, kSchemaHash);
-  EXPECT_NE(read("protocol/SPEC.md").find(expected), std::string::npos) << expected;
+  EXPECT_NE(palp::test::read_source("protocol/SPEC.md").find(expected), std::string::npos) << expected;
 }
 
 }  // namespace

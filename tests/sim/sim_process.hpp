@@ -22,6 +22,13 @@
 
 namespace palp::sim::test {
 
+/// Built with AddressSanitizer: the longest simulations skip (they run in the release build).
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
 class SimProcess {
  public:
   /// connect_device false leaves the device socket to another client (palp-sim serves one):

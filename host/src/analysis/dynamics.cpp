@@ -8,27 +8,22 @@
 
 #include "palp/analysis/contact_models.hpp"
 #include "palp/error.hpp"
+#include "number_text.hpp"
 
 namespace palp::analysis {
 
 namespace {
 
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 void require_positive(const char* function, const char* what, double v, const char* unit) {
   if (!(v > 0) || !std::isfinite(v))
-    throw ConfigError(std::string(function) + ": " + what + " must be positive (got " + text(v) +
+    throw ConfigError(std::string(function) + ": " + what + " must be positive (got " + detail::number_text(v) +
                       (unit[0] != '\0' ? " " : "") + unit + ")");
 }
 
 void require_non_negative(const char* function, const char* what, double v) {
   if (!(v >= 0) || !std::isfinite(v))
     throw ConfigError(std::string(function) + ": " + what + " must not be negative (got " +
-                      text(v) + ")");
+                      detail::number_text(v) + ")");
 }
 
 /// Relative standard error of a product of powers of independent factors:
@@ -95,10 +90,10 @@ Viscoelastic viscoelastic_from(std::span<const FrfLine> lines, const InstrumentD
   v.contact_radius_m = sneddon_contact_radius_m(delta0_m, tip_radius_m);
   if (delta0_m > tip_radius_m / 2) {
     v.flagged = true;
-    v.flag_reason = "delta0 = " + text(delta0_m * 1e3) + " mm is more than half the tip radius (" +
-                    text(tip_radius_m * 1e3) +
+    v.flag_reason = "delta0 = " + detail::number_text(delta0_m * 1e3) + " mm is more than half the tip radius (" +
+                    detail::number_text(tip_radius_m * 1e3) +
                     " mm): the moduli rest on the contact radius of a deep indentation (a = " +
-                    text(v.contact_radius_m * 1e3) + " mm from the Sneddon sphere)";
+                    detail::number_text(v.contact_radius_m * 1e3) + " mm from the Sneddon sphere)";
   }
   const double two_a = 2.0 * v.contact_radius_m;
   v.lines.reserve(lines.size());
@@ -106,7 +101,7 @@ Viscoelastic viscoelastic_from(std::span<const FrfLine> lines, const InstrumentD
     const FrfLine& l = lines[i];
     if (l.G_m_per_N == std::complex<double>(0, 0) || !std::isfinite(std::abs(l.G_m_per_N)))
       throw ConfigError(std::string(fn) + ": line " + std::to_string(i + 1) + " (f_Hz " +
-                        text(l.f_Hz) + ") has G = " + (l.G_m_per_N == 0.0 ? "0" : "a non-finite value"));
+                        detail::number_text(l.f_Hz) + ") has G = " + (l.G_m_per_N == 0.0 ? "0" : "a non-finite value"));
     const double w = 2.0 * std::numbers::pi * l.f_Hz;
     const std::complex<double> instrument_D(
         instrument.k_v_N_per_m - instrument.m_v_kg * w * w, instrument.b_v_N_s_per_m * w);

@@ -13,7 +13,6 @@
 
 namespace palp::analysis::detail {
 namespace {
-constexpr double kTwoPi = 6.283185307179586476925;
 /// A sample's t_s * rate must be this close to an integer (device time is whole ticks, written
 /// in microseconds: exact at 20 and 40 kHz).
 constexpr double kGridTolerance_ticks = 0.01;

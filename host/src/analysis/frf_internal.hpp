@@ -13,6 +13,9 @@
 
 namespace palp::analysis::detail {
 
+inline constexpr double kTwoPi = 6.283185307179586476925;
+inline constexpr double kTurn = 4294967296.0;  ///< 2^32: the programs' phase accumulators wrap here
+
 /// printf into a std::string (for error texts with numbers).
 [[gnu::format(printf, 1, 2)]] std::string strf(const char* format, ...);
 

@@ -17,9 +17,9 @@ namespace {
 
 using detail::strf;
 using cplx = std::complex<double>;
-constexpr const char* kWho = "multisine_frf";
-constexpr double kTwoPi = 6.283185307179586476925;
-constexpr double kTurn = 4294967296.0;  // 2^32
+constexpr const char* kMultisineWho = "multisine_frf";
+using detail::kTwoPi;
+using detail::kTurn;
 /// Phasor recurrences restart from an exact phase this often (keeps rounding at ~1e-13).
 constexpr std::uint32_t kReanchor = 1024;
 
@@ -78,11 +78,11 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   const double K = static_cast<double>(l.h.size());
   const double threshold =
       std::max(3 * proto::kCurrentLsb_A, 0.1 * m.line_amplitude_A * std::sqrt(K / 2));
-  const std::size_t r0 = detail::first_departure(r, threshold, kWho);
+  const std::size_t r0 = detail::first_departure(r, threshold, kMultisineWho);
   if (r0 + N > r.size() || r.tick[r0 + N - 1] - r.tick[r0] != static_cast<std::int64_t>(N - 1) * d)
     throw ConfigError(strf("%s: the recording has no whole period of the commanded current "
                            "after its first change (at %.6f s)",
-                           kWho, r.rec->t_s[r0]));
+                           kMultisineWho, r.rec->t_s[r0]));
   double amplitude = 0, sum_hr = 0, sum_hh = 0, delta0 = 0;
   std::vector<double> turns(l.h.size());
   for (std::size_t n = 0; n < l.h.size(); ++n) {
@@ -94,7 +94,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   if (std::abs(amplitude - m.line_amplitude_A) > 0.05 * m.line_amplitude_A + proto::kCurrentLsb_A)
     throw ConfigError(strf("%s: the commanded current does not show this multisine (line "
                            "amplitude %.5f A, the program's %.5f A)",
-                           kWho, amplitude, static_cast<double>(m.line_amplitude_A)));
+                           kMultisineWho, amplitude, static_cast<double>(m.line_amplitude_A)));
   {
     double t = turns[0] - std::floor(turns[0] + 0.1);  // [-0.1, 0.9) of the lowest line
     delta0 = t * l.period_ticks / l.h[0];
@@ -150,19 +150,19 @@ double multisine_unit_peak(const proto::LoadMultisine& program, std::uint32_t co
 
 Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
                   std::uint32_t control_rate_Hz, const FrfOptions& options) {
-  const Lines l = lines_of(program, control_rate_Hz, kWho);
-  const detail::TickedRecording r = detail::ticked(rec, control_rate_Hz, kWho);
-  detail::check_force_constant(options, kWho);
+  const Lines l = lines_of(program, control_rate_Hz, kMultisineWho);
+  const detail::TickedRecording r = detail::ticked(rec, control_rate_Hz, kMultisineWho);
+  detail::check_force_constant(options, kMultisineWho);
   if (!(program.line_amplitude_A > 0))
-    throw ConfigError(strf("%s: the program's line_amplitude_A is not > 0", kWho));
+    throw ConfigError(strf("%s: the program's line_amplitude_A is not > 0", kMultisineWho));
   if (options.multisine_discard_periods < 0)
-    throw ConfigError(strf("%s: multisine_discard_periods is negative", kWho));
+    throw ConfigError(strf("%s: multisine_discard_periods is negative", kMultisineWho));
   const std::uint32_t P = l.period_ticks;
   const std::int64_t d = r.interval_ticks;
   if (P % d != 0)
     throw ConfigError(strf("%s: the stream's sample interval (%lld ticks) does not divide the "
                            "period (%u ticks): choose a decimation that divides it",
-                           kWho, static_cast<long long>(d), P));
+                           kMultisineWho, static_cast<long long>(d), P));
   const auto N = static_cast<std::size_t>(P / d);
   const std::int64_t t0 = program_start_tick(r, program, l);
   const double rate = control_rate_Hz;
@@ -174,7 +174,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   if (program_periods > 0 && periods_recorded < program_periods)
     throw ConfigError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
                            "it started at %.6f s)",
-                           kWho, rec.t_s.back(),
+                           kMultisineWho, rec.t_s.back(),
                            static_cast<double>(t0 + program_periods * P) / rate,
                            static_cast<double>(t0) / rate));
   const std::int64_t last = program_periods > 0 ? program_periods : periods_recorded;
@@ -182,7 +182,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   if (last <= discard)
     throw ConfigError(strf("%s: %lld whole periods recorded and %lld discarded: none left to "
                            "measure",
-                           kWho, static_cast<long long>(last), static_cast<long long>(discard)));
+                           kMultisineWho, static_cast<long long>(last), static_cast<long long>(discard)));
   // the first sample of every whole measured period (N samples spaced d); a period with a gap
   // in the stream is left out and the notes say so
   std::vector<std::size_t> first;
@@ -202,7 +202,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
     offset.push_back(r.tick[k] - start);
   }
   if (first.empty())
-    throw ConfigError(strf("%s: every measured period has a gap in the stream", kWho));
+    throw ConfigError(strf("%s: every measured period has a gap in the stream", kMultisineWho));
   const std::size_t M = first.size();
 
   // harmonics to transform: the excited lines, then the empty ones between them

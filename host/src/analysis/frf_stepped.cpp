@@ -15,9 +15,9 @@ namespace palp::analysis {
 namespace {
 
 using detail::strf;
-constexpr const char* kWho = "stepped_sine_frf";
-constexpr double kTwoPi = 6.283185307179586476925;
-constexpr double kTurn = 4294967296.0;  // 2^32
+constexpr const char* kSteppedWho = "stepped_sine_frf";
+using detail::kTwoPi;
+using detail::kTurn;
 
 /// A line's ticks from the program start: [begin, end), measured from measure_begin.
 struct LineTicks {
@@ -97,7 +97,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
                                 const LineTicks& first) {
   const double amplitude = m.amplitude_A;
   const std::size_t r0 =
-      detail::first_departure(r, std::max(3 * proto::kCurrentLsb_A, 0.05 * amplitude), kWho);
+      detail::first_departure(r, std::max(3 * proto::kCurrentLsb_A, 0.05 * amplitude), kSteppedWho);
   // the program started after sample r0 - 1 went out (or just before it); 85 % of the first
   // line from there stays inside the first line
   const std::int64_t from = r.tick[r0];
@@ -106,7 +106,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   if (idx.size() < 8)
     throw ConfigError(strf("%s: the first line has %zu samples of the commanded current at the "
                            "recording's start (need 8)",
-                           kWho, idx.size()));
+                           kSteppedWho, idx.size()));
   const SineFit f = fit_sine(*r.rec->i_cmd_A, 1.0, idx, r.tick, from, first.increment, r.rate_Hz,
                              false);
   // i_cmd = offset + A sin(w (t - t0)) = Re{X e^{j w (t - from)}} with X = -j A e^{j w delta},
@@ -114,7 +114,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   if (std::abs(f.amplitude() - amplitude) > 0.05 * amplitude + 3 * proto::kCurrentLsb_A)
     throw ConfigError(strf("%s: the commanded current does not show the sweep's first line "
                            "(amplitude %.4f A at %.4f Hz, the program's %.4f A)",
-                           kWho, f.amplitude(),
+                           kSteppedWho, f.amplitude(),
                            first.increment * static_cast<double>(r.rate_Hz) / kTurn, amplitude));
   double turns = std::arg(f.X * std::complex<double>(0, 1)) / kTwoPi;  // w delta, in turns
   turns -= std::floor(turns + 0.1);                                      // [-0.1, 0.9)
@@ -136,10 +136,10 @@ double program_duration_s(const proto::LoadSweep& program, std::uint32_t control
 
 Frf stepped_sine_frf(const Recording& rec, const proto::LoadSweep& program,
                      std::uint32_t control_rate_Hz, const FrfOptions& options) {
-  const detail::TickedRecording r = detail::ticked(rec, control_rate_Hz, kWho);
-  detail::check_force_constant(options, kWho);
+  const detail::TickedRecording r = detail::ticked(rec, control_rate_Hz, kSteppedWho);
+  detail::check_force_constant(options, kSteppedWho);
   if (!(program.amplitude_A > 0))
-    throw ConfigError(strf("%s: the program's amplitude_A is not > 0", kWho));
+    throw ConfigError(strf("%s: the program's amplitude_A is not > 0", kSteppedWho));
   const std::vector<LineTicks> lines = schedule(program, control_rate_Hz);
   const std::int64_t t0 = program_start_tick(r, program, lines.front());
   const std::int64_t total = lines.back().end;
@@ -147,7 +147,7 @@ Frf stepped_sine_frf(const Recording& rec, const proto::LoadSweep& program,
   if (r.tick.back() - t0 < total - r.interval_ticks)
     throw ConfigError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
                            "it started at %.6f s)",
-                           kWho, rec.t_s.back(), static_cast<double>(t0 + total) / rate,
+                           kSteppedWho, rec.t_s.back(), static_cast<double>(t0 + total) / rate,
                            static_cast<double>(t0) / rate));
 
   Frf out;
@@ -164,7 +164,7 @@ Frf stepped_sine_frf(const Recording& rec, const proto::LoadSweep& program,
     if (idx.size() < needed)
       throw ConfigError(strf("%s: line %zu (%.4f Hz) has %zu samples in its %u measured cycles; "
                              "it needs %zu (a faster stream or more cycles)",
-                             kWho, j, f_Hz, idx.size(), l.measure_cycles, needed));
+                             kSteppedWho, j, f_Hz, idx.size(), l.measure_cycles, needed));
     const SineFit fi = fit_sine(rec.i_A, 1.0, idx, r.tick, t0 + l.begin, l.increment,
                                 control_rate_Hz, true);
     const SineFit fz = fit_sine(rec.z_mm, 1e-3, idx, r.tick, t0 + l.begin, l.increment,

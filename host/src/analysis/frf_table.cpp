@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "palp/error.hpp"
+#include "number_text.hpp"
 
 namespace palp::analysis {
 
@@ -35,12 +36,6 @@ std::vector<std::string_view> split(std::string_view line) {
     if (at == std::string_view::npos) return cells;
     line.remove_prefix(at + 1);
   }
-}
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 /// A finite number written as one ("inf", "nan", "1e999" and trailing text are not).
@@ -125,18 +120,18 @@ class TableParser {
              "\" is not a finite number");
     FrfLine l;
     l.f_Hz = v[0];
-    if (l.f_Hz <= 0) fail("f_Hz must be positive (got " + text(l.f_Hz) + ")");
+    if (l.f_Hz <= 0) fail("f_Hz must be positive (got " + detail::number_text(l.f_Hz) + ")");
     if (!frf_.lines.empty() && l.f_Hz <= frf_.lines.back().f_Hz)
-      fail("f_Hz " + text(l.f_Hz) + " does not increase (the row before has " +
-           text(frf_.lines.back().f_Hz) + ")");
+      fail("f_Hz " + detail::number_text(l.f_Hz) + " does not increase (the row before has " +
+           detail::number_text(frf_.lines.back().f_Hz) + ")");
     if (layout_ == Layout::re_im) {
       l.G_m_per_N = {v[1], v[2]};
     } else {
-      if (v[1] < 0) fail("mag_m_per_N must not be negative (got " + text(v[1]) + ")");
+      if (v[1] < 0) fail("mag_m_per_N must not be negative (got " + detail::number_text(v[1]) + ")");
       l.G_m_per_N = std::polar(v[1], v[2] * std::numbers::pi / 180.0);
     }
     if (has_sigma_) {
-      if (v[3] < 0) fail("sigma_m_per_N must not be negative (got " + text(v[3]) + ")");
+      if (v[3] < 0) fail("sigma_m_per_N must not be negative (got " + detail::number_text(v[3]) + ")");
       l.sigma_m_per_N = v[3];
     }
     frf_.lines.push_back(l);

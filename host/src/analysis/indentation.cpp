@@ -8,30 +8,11 @@
 
 #include "analysis/indentation_internal.hpp"
 #include "palp/error.hpp"
+#include "number_text.hpp"
 
 namespace palp::analysis {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
-
-// Contiguous runs of equal rep values: [begin, end) per repetition.
-std::vector<std::pair<int, int>> repetitions(const Curve& c) {
-  std::vector<std::pair<int, int>> runs;
-  const int n = static_cast<int>(c.z_m.size());
-  if (n == 0) return runs;
-  if (c.rep.size() == 0) return {{0, n}};
-  int b = 0;
-  for (int k = 1; k <= n; ++k) {
-    if (k == n || c.rep[k] != c.rep[b]) { runs.emplace_back(b, k); b = k; }
-  }
-  return runs;
-}
 
 bool finite_params(const IndentationParams& p) {
   for (double v : {p.force_constant_N_per_A, p.contact_current_A, p.spring_N_per_m, p.tip_radius_m,
@@ -52,7 +33,7 @@ void validate(const Curve& c, const IndentationParams& p) {
   for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
     if (!std::isfinite(c.z_m[k]) || !std::isfinite(c.i_A[k]))
       throw ConfigError("indentation curve: sample " + std::to_string(k) +
-                        " is not finite (z_m = " + fmt(c.z_m[k]) + ", i_A = " + fmt(c.i_A[k]) +
+                        " is not finite (z_m = " + detail::number_text(c.z_m[k]) + ", i_A = " + detail::number_text(c.i_A[k]) +
                         "); remove or repair it before the analysis");
   }
   const auto& tx = p.kf_table_stroke_m;
@@ -98,7 +79,7 @@ Eigen::VectorXd object_force_N(const Curve& c, const IndentationParams& p, doubl
 
 Branches loading_branch(const Curve& c) {
   Branches b;
-  for (auto [begin, end] : repetitions(c)) {
+  for (auto [begin, end] : detail::repetitions(c)) {
     int peak = begin;
     for (int k = begin; k < end; ++k) if (c.i_A[k] > c.i_A[peak]) peak = k;
     for (int k = begin; k <= peak; ++k) b.loading.push_back(k);
@@ -113,7 +94,7 @@ detail::FitData detail::collect_loading(const Curve& c, const IndentationParams&
   std::vector<int> idx;
   int rep_ord = 0, below = 0;
   d.max_i_A = c.i_A.size() ? c.i_A.maxCoeff() : 0.0;
-  for (auto [begin, end] : repetitions(c)) {
+  for (auto [begin, end] : detail::repetitions(c)) {
     Curve one;
     one.z_m = c.z_m.segment(begin, end - begin);
     one.i_A = c.i_A.segment(begin, end - begin);
@@ -143,10 +124,10 @@ detail::FitData detail::collect_loading(const Curve& c, const IndentationParams&
 void detail::require_contact(const FitData& d, const IndentationParams& p) {
   if (d.n_contact == 0)
     throw ConfigError("no contact: no loading sample reaches the contact current I_c = " +
-                      fmt(p.contact_current_A) + " A (highest current " + fmt(d.max_i_A) + " A)");
+                      detail::number_text(p.contact_current_A) + " A (highest current " + detail::number_text(d.max_i_A) + " A)");
   if (d.n_contact < p.min_points)
     throw ConfigError("too few points: " + std::to_string(d.n_contact) +
-                      " loading samples at or above I_c = " + fmt(p.contact_current_A) +
+                      " loading samples at or above I_c = " + detail::number_text(p.contact_current_A) +
                       " A, the fits need at least " + std::to_string(p.min_points));
 }
 
@@ -159,20 +140,20 @@ Value local_force_N(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo, dou
     s0 += 1; sx += x; sy += Fo[k]; sxx += x * x; sxy += x * Fo[k];
     lo = std::min(lo, x); hi = std::max(hi, x);
   }
-  const std::string where = " within +-" + fmt(hw * 1e3) + " mm of " + fmt(at * 1e3) + " mm depth";
+  const std::string where = " within +-" + detail::number_text(hw * 1e3) + " mm of " + detail::number_text(at * 1e3) + " mm depth";
   if (s0 < 2) {
     const double deepest = depth.size() ? depth.maxCoeff() : -INFINITY;
     if (deepest < at)
-      return Value::absent("the loading branch does not reach " + fmt(at * 1e3) +
-                           " mm depth (deepest " + fmt(deepest * 1e3) + " mm)");
+      return Value::absent("the loading branch does not reach " + detail::number_text(at * 1e3) +
+                           " mm depth (deepest " + detail::number_text(deepest * 1e3) + " mm)");
     return Value::absent("fewer than 2 samples" + where +
                          ": the depth steps are coarser than the window");
   }
   // The local line must be supported over at least half the window, and on both sides of `at`
   // or close to it: a staircase ramp whose steps are coarser than the window gives one level.
   if (!(hi - lo >= hw) || lo > 0.5 * hw || hi < -0.5 * hw)
-    return Value::absent("the samples" + where + " span only " + fmt((hi - lo) * 1e6) +
-                         " um (from " + fmt(lo * 1e6) + " to " + fmt(hi * 1e6) +
+    return Value::absent("the samples" + where + " span only " + detail::number_text((hi - lo) * 1e6) +
+                         " um (from " + detail::number_text(lo * 1e6) + " to " + detail::number_text(hi * 1e6) +
                          " um): the depth steps are coarser than the window");
   const double det = s0 * sxx - sx * sx;
   return Value::of((sxx * sy - sx * sxy) / det);  // the local line's value at `at`
@@ -196,8 +177,8 @@ Value window_slope(const Eigen::VectorXd& depth, const Eigen::VectorXd& Fo,
     dmin = std::min(dmin, depth[k]); dmax = std::max(dmax, depth[k]);
   }
   if (s0 < 3 || !(dmax - dmin > 0.5 * (p.window_hi_m - p.window_lo_m)))
-    return Value::absent("the loading samples do not cover half of the " + fmt(p.window_lo_m * 1e3) +
-                         "-" + fmt(p.window_hi_m * 1e3) + " mm depth window");
+    return Value::absent("the loading samples do not cover half of the " + detail::number_text(p.window_lo_m * 1e3) +
+                         "-" + detail::number_text(p.window_hi_m * 1e3) + " mm depth window");
   return Value::of((s0 * sxy - sx * sy) / (s0 * sxx - sx * sx));
 }
 
@@ -273,29 +254,29 @@ IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p
   res.k_window_paper_N_per_m = window_slope(depth_p.head(np), Fo_p.head(np), p);
 
   // Operating point: F_o(delta0) = F_0 on the chosen model (monotone: bisection).
-  const std::string beyond = " mm, beyond the deepest loading sample (" + fmt(max_depth * 1e3) + " mm)";
+  const std::string beyond = " mm, beyond the deepest loading sample (" + detail::number_text(max_depth * 1e3) + " mm)";
   if (!(res.F0_N > 0.0)) {
-    res.delta0_m = Value::absent("bias current I_0 = " + fmt(p.bias_current_A) +
+    res.delta0_m = Value::absent("bias current I_0 = " + detail::number_text(p.bias_current_A) +
                                  " A gives no positive object force above I_c");
   } else {
     double lo = 0.0, hi = std::max(max_depth, 1e-6);
     while (best->force_N(hi) < res.F0_N && hi < 10.0) hi *= 2.0;
     if (best->force_N(hi) < res.F0_N) {
-      res.delta0_m = Value::absent("the fitted model does not reach F_0 = " + fmt(res.F0_N) + " N");
+      res.delta0_m = Value::absent("the fitted model does not reach F_0 = " + detail::number_text(res.F0_N) + " N");
     } else {
       for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
         const double mid = 0.5 * (lo + hi);
         (best->force_N(mid) < res.F0_N ? lo : hi) = mid;
       }
       const double d0 = 0.5 * (lo + hi);
-      if (d0 > max_depth) res.delta0_m = Value::absent("delta0 = " + fmt(d0 * 1e3) + beyond);
+      if (d0 > max_depth) res.delta0_m = Value::absent("delta0 = " + detail::number_text(d0 * 1e3) + beyond);
       else res.delta0_m = Value::of(d0);
     }
   }
   res.k_tangent_at_delta0_N_per_m = res.delta0_m
       ? Value::of(best->stiffness_N_per_m(*res.delta0_m.value)) : Value::absent(res.delta0_m.reason);
   for (double dd : p.tangent_depths_m) {
-    if (dd > max_depth) res.k_tangent_N_per_m.push_back(Value::absent("depth " + fmt(dd * 1e3) + beyond));
+    if (dd > max_depth) res.k_tangent_N_per_m.push_back(Value::absent("depth " + detail::number_text(dd * 1e3) + beyond));
     else res.k_tangent_N_per_m.push_back(Value::of(best->stiffness_N_per_m(dd)));
   }
   return res;
@@ -307,7 +288,7 @@ RepetitionStats repetition_mean_sd(const Curve& c, const IndentationParams& p, d
   const Eigen::Index G = grid.size();
   RepetitionStats s{grid, Eigen::VectorXd::Zero(G), Eigen::VectorXd::Zero(G), Eigen::VectorXi::Zero(G)};
   Eigen::VectorXd sum2 = Eigen::VectorXd::Zero(G);
-  for (auto [begin, end] : repetitions(c)) {
+  for (auto [begin, end] : detail::repetitions(c)) {
     Curve one{c.z_m.segment(begin, end - begin), c.i_A.segment(begin, end - begin), {}};
     std::vector<std::pair<double, double>> pts;  // (depth, F_o), sorted by depth
     const Eigen::VectorXd Fo = object_force_N(one, p, contact_z_m);
@@ -348,6 +329,18 @@ MeanSd mean_sd(const std::vector<Value>& per_rep) {
   out.sd = out.n > 1 ? Value::of(std::sqrt(std::max(0.0, (s2 - out.n * m * m) / (out.n - 1))))
                      : Value::absent("s.d. needs at least 2 repetitions with a value");
   return out;
+}
+
+std::vector<std::pair<int, int>> detail::repetitions(const Curve& c) {
+  std::vector<std::pair<int, int>> runs;
+  const int n = static_cast<int>(c.z_m.size());
+  if (n == 0) return runs;
+  if (c.rep.size() == 0) return {{0, n}};
+  int b = 0;
+  for (int k = 1; k <= n; ++k) {
+    if (k == n || c.rep[k] != c.rep[b]) { runs.emplace_back(b, k); b = k; }
+  }
+  return runs;
 }
 
 }  // namespace palp::analysis

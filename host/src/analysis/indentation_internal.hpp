@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "palp/analysis/indentation.hpp"
@@ -24,6 +25,9 @@ struct FitData {
 /// times the current noise); at least kBaselineMinSamples of them make a baseline.
 constexpr double kBaselineMarginA = 0.02;
 constexpr int kBaselineMinSamples = 5;
+
+/// Contiguous runs of equal rep values: [begin, end) per repetition (one run without reps).
+std::vector<std::pair<int, int>> repetitions(const Curve& c);
 
 /// Validates and collects; does not check for contact (callers decide: throw or reason).
 FitData collect_loading(const Curve& c, const IndentationParams& p);

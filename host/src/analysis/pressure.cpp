@@ -8,31 +8,14 @@
 #include <string>
 
 #include "palp/error.hpp"
+#include "indentation_internal.hpp"
+#include "number_text.hpp"
 
 namespace palp::analysis {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
-
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
-
-// Contiguous runs of equal rep values: [begin, end) per repetition.
-std::vector<std::pair<int, int>> repetitions(const Curve& c) {
-  std::vector<std::pair<int, int>> runs;
-  const int n = static_cast<int>(c.z_m.size());
-  if (n == 0) return runs;
-  if (c.rep.size() == 0) return {{0, n}};
-  int b = 0;
-  for (int k = 1; k <= n; ++k)
-    if (k == n || c.rep[k] != c.rep[b]) { runs.emplace_back(b, k); b = k; }
-  return runs;
-}
 
 // Linear interpolation of y(x) at xq over samples sorted by x (ties kept in order).
 double interpolate(const std::vector<std::pair<double, double>>& xy, double xq) {
@@ -57,7 +40,7 @@ std::vector<std::pair<double, double>> sorted_pairs(const Eigen::VectorXd& x, co
 
 void require_positive(double v, const char* what) {
   if (!std::isfinite(v) || v <= 0.0)
-    throw ConfigError(std::string(what) + " must be a finite number above 0, got " + fmt(v));
+    throw ConfigError(std::string(what) + " must be a finite number above 0, got " + detail::number_text(v));
 }
 
 }  // namespace
@@ -142,7 +125,7 @@ PressureResult analyze_pressure(const Curve& c, const Eigen::MatrixXd& p_Pa,
   res.contact_z_m = contact_z_m;
   struct Rep { std::vector<int> load, unload; };
   std::vector<Rep> reps;
-  for (auto [begin, end] : repetitions(c)) {
+  for (auto [begin, end] : detail::repetitions(c)) {
     Curve one;
     one.z_m = c.z_m.segment(begin, end - begin);
     one.i_A = c.i_A.segment(begin, end - begin);
@@ -157,7 +140,7 @@ PressureResult analyze_pressure(const Curve& c, const Eigen::MatrixXd& p_Pa,
   }
   if (res.n_loading == 0)
     throw ConfigError("no contact: no loading sample reaches the contact current I_c = " +
-                      fmt(p.contact_current_A) + " A");
+                      detail::number_text(p.contact_current_A) + " A");
 
   auto gather = [&](const std::vector<int>& idx, Eigen::Index col, Eigen::VectorXd& F, Eigen::VectorXd& P) {
     F.resize(static_cast<Eigen::Index>(idx.size()));
@@ -203,7 +186,7 @@ double enclosed_volume_m3(const ChannelGeometry& g) {
   require_positive(g.channel_diameter_m, "channel diameter");
   require_positive(g.channel_length_m, "channel length");
   if (!std::isfinite(g.tube_length_m) || g.tube_length_m < 0.0)
-    throw ConfigError("tube length must be a finite number of 0 or more, got " + fmt(g.tube_length_m));
+    throw ConfigError("tube length must be a finite number of 0 or more, got " + detail::number_text(g.tube_length_m));
   if (g.tube_length_m > 0.0) require_positive(g.tube_bore_m, "tube bore");
   const double q = std::numbers::pi / 4.0;
   return q * (g.channel_diameter_m * g.channel_diameter_m * g.channel_length_m +
@@ -215,11 +198,11 @@ BoyleResult boyle_volume_change(double V1_m3, double dP_Pa, double ambient_Pa, d
   require_positive(ambient_Pa, "ambient pressure");
   if (!std::isfinite(dP_Pa)) throw ConfigError("pressure change must be a finite number");
   if (!std::isfinite(gamma) || gamma <= 1.0)
-    throw ConfigError("heat capacity ratio must be above 1, got " + fmt(gamma));
+    throw ConfigError("heat capacity ratio must be above 1, got " + detail::number_text(gamma));
   const double P2 = ambient_Pa + dP_Pa;
   if (!(P2 > 0.0))
-    throw ConfigError("pressure change " + fmt(dP_Pa) + " Pa takes the absolute pressure to " +
-                      fmt(P2) + " Pa (must stay above 0)");
+    throw ConfigError("pressure change " + detail::number_text(dP_Pa) + " Pa takes the absolute pressure to " +
+                      detail::number_text(P2) + " Pa (must stay above 0)");
   BoyleResult b;
   b.V1_m3 = V1_m3;
   b.P1_Pa = ambient_Pa;

@@ -50,6 +50,21 @@ void wait_device_time(Probe& probe, double until_s, const std::function<bool()>&
   }
 }
 
+ContactEvent float_coil(Probe& probe, double current_A, const std::string& hint) {
+  ContactWatchProgram w;
+  w.hold_current_A = static_cast<float>(current_A);
+  w.threshold_counts = kFloatCounts;
+  w.timeout_s = 5.0f;
+  probe.load(w);
+  probe.start();
+  const auto event = probe.wait_contact(10s);
+  if (!event)
+    throw TimeoutError("the coil to float off its rear stop at " + std::to_string(current_A) +
+                           " A (" + hint + ")",
+                       10.0, std::nullopt);
+  return *event;
+}
+
 bool release_coil(Probe& probe, double settle_s, const std::function<bool()>& cancelled,
                   const std::function<void()>& announce) {
   const Status st = probe.status();

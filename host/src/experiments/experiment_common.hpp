@@ -14,6 +14,10 @@
 
 namespace palp::experiment {
 
+inline constexpr double kCountM = 1e-6;            ///< one encoder count, m (SPEC: 1 µm)
+inline constexpr double kMaxStreamRate_Hz = 1000;  ///< the experiments stream at <= 1 kHz
+inline constexpr std::uint32_t kFloatCounts = 500; ///< the coil has left its rear stop (0.5 mm)
+
 /// The shortest decimal of a protocol f32 as a double (0.01f reads 0.01).
 double f32(float v);
 
@@ -24,6 +28,11 @@ void wait_device_time(Probe& probe, double until_s, const std::function<bool()>&
 /// time; returns whether it had to. Calls announce() first when it does.
 bool release_coil(Probe& probe, double settle_s, const std::function<bool()>& cancelled,
                   const std::function<void()>& announce);
+
+/// Floats the coil off its rear stop: a contact watch holding current_A that fires after
+/// kFloatCounts of travel (a fired watch keeps its current on). Returns the event; throws
+/// TimeoutError after 10 s, the message ending with `hint` (why the coil may not have moved).
+ContactEvent float_coil(Probe& probe, double current_A, const std::string& hint);
 
 /// What record_program() collected.
 struct ProgramRecording {

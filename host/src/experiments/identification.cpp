@@ -14,7 +14,6 @@ namespace {
 
 using experiment::f32;
 
-constexpr std::uint32_t kFloatCounts = 500;  // the coil left its rear stop (0.5 mm)
 constexpr double kSameCurrent_A = 1e-3;      // a bias this close to I_c needs no second hold
 
 /// Floats the coil at I_c with a contact watch (as indent() does), then holds the bias with a
@@ -24,17 +23,8 @@ void float_and_hold_bias(Probe& probe, const IdentificationSettings& s,
                          const std::function<void(const char*)>& phase,
                          const std::function<bool()>& cancelled) {
   phase("floating the coil");
-  ContactWatchProgram w;
-  w.hold_current_A = static_cast<float>(s.contact_current_A);
-  w.threshold_counts = kFloatCounts;
-  w.timeout_s = 5.0f;
-  probe.load(w);
-  probe.start();
-  auto event = probe.wait_contact(10s);
-  if (!event)
-    throw TimeoutError("the coil to float off its rear stop at " + std::to_string(s.contact_current_A) +
-                           " A (is the tip pressed against the specimen?)",
-                       10.0, std::nullopt);
+  std::optional<ContactEvent> event =
+      experiment::float_coil(probe, s.contact_current_A, "is the tip pressed against the specimen?");
   if (std::fabs(s.bias_A - s.contact_current_A) > kSameCurrent_A) {
     ContactWatchProgram b;
     b.hold_current_A = static_cast<float>(s.bias_A);

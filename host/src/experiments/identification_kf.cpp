@@ -13,7 +13,7 @@ namespace palp {
 
 namespace {
 
-void require(bool ok, const std::string& what) {
+void require_kf(bool ok, const std::string& what) {
   if (!ok) throw ConfigError("K_f calibration settings: " + what);
 }
 
@@ -34,21 +34,21 @@ proto::LoadRamp ramp_of(const KfCalibrationSettings& s) {
 
 void KfCalibrationSettings::validate() const {
   auto finite = [](double v) { return std::isfinite(v); };
-  require(finite(start_A) && start_A > 0 && start_A <= 4,
+  require_kf(finite(start_A) && start_A > 0 && start_A <= 4,
           "start_A must lie in (0, 4] A (the coil must float off its rear stop)");
-  require(finite(stop_A) && stop_A > start_A && stop_A <= 4, "stop_A must lie above start_A, at most 4 A");
-  require(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
+  require_kf(finite(stop_A) && stop_A > start_A && stop_A <= 4, "stop_A must lie above start_A, at most 4 A");
+  require_kf(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
           "step_A must lie in 0.0001 A .. stop_A - start_A");
-  require(finite(dwell_s) && dwell_s >= 0.05 && dwell_s <= 100, "dwell_s must lie in 0.05..100 s");
-  require(finite(settled_fraction) && settled_fraction > 0 && settled_fraction <= 1,
+  require_kf(finite(dwell_s) && dwell_s >= 0.05 && dwell_s <= 100, "dwell_s must lie in 0.05..100 s");
+  require_kf(finite(settled_fraction) && settled_fraction > 0 && settled_fraction <= 1,
           "settled_fraction must lie in (0, 1]");
-  require(max_nodes >= 2 && max_nodes <= 16, "max_nodes must lie in 2..16 (the calibration block holds 16)");
-  require(finite(k_v_N_per_m) && k_v_N_per_m > 0, "k_v_N_per_m must be positive");
-  require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= 1000,
+  require_kf(max_nodes >= 2 && max_nodes <= 16, "max_nodes must lie in 2..16 (the calibration block holds 16)");
+  require_kf(finite(k_v_N_per_m) && k_v_N_per_m > 0, "k_v_N_per_m must be positive");
+  require_kf(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= 1000,
           "stream_rate_Hz must lie in (0, 1000] Hz");
-  require(!anchor || (finite(anchor->stroke_m) && finite(anchor->kf_N_per_A) && anchor->kf_N_per_A > 0),
+  require_kf(!anchor || (finite(anchor->stroke_m) && finite(anchor->kf_N_per_A) && anchor->kf_N_per_A > 0),
           "anchor must have a finite stroke and a positive K_f");
-  require(!commit || write, "commit needs write (only the table written to RAM can be committed)");
+  require_kf(!commit || write, "commit needs write (only the table written to RAM can be committed)");
 }
 
 KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,

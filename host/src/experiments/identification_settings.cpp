@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "experiment_common.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 
@@ -13,10 +14,10 @@ namespace palp {
 
 namespace {
 
-constexpr double kMaxStreamRate_Hz = 1000;  // the issue: streamed at <= 1 kHz
+using experiment::kMaxStreamRate_Hz;
 constexpr int kMaxMultisineLines = 400;     // the device's synthesiser (multisine_synth.hpp)
 
-void require(bool ok, const std::string& what) {
+void require_identification(bool ok, const std::string& what) {
   if (!ok) throw ConfigError("identification settings: " + what);
 }
 
@@ -68,51 +69,51 @@ IdentificationSettings IdentificationSettings::preset(IdentificationPreset p) {
 
 void IdentificationSettings::validate() const {
   auto finite = [](double v) { return std::isfinite(v); };
-  require(finite(bias_A) && std::fabs(bias_A) <= 4, "bias_A must lie in -4..4 A");
-  require(finite(amplitude_A) && amplitude_A > 0 && std::fabs(bias_A) + amplitude_A <= 4,
+  require_identification(finite(bias_A) && std::fabs(bias_A) <= 4, "bias_A must lie in -4..4 A");
+  require_identification(finite(amplitude_A) && amplitude_A > 0 && std::fabs(bias_A) + amplitude_A <= 4,
           "amplitude_A must be positive with |bias_A| + amplitude_A <= 4 A");
-  require(finite(f_lo_Hz) && f_lo_Hz >= 0.01, "f_lo_Hz must be at least 0.01 Hz");
-  require(finite(f_hi_Hz) && f_hi_Hz > f_lo_Hz && f_hi_Hz <= 125,
+  require_identification(finite(f_lo_Hz) && f_lo_Hz >= 0.01, "f_lo_Hz must be at least 0.01 Hz");
+  require_identification(finite(f_hi_Hz) && f_hi_Hz > f_lo_Hz && f_hi_Hz <= 125,
           "f_hi_Hz must lie above f_lo_Hz and at most 125 Hz");
-  require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= kMaxStreamRate_Hz,
+  require_identification(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= kMaxStreamRate_Hz,
           "stream_rate_Hz must lie in (0, 1000] Hz");
-  require(stream_rate_Hz >= 8 * f_hi_Hz,
+  require_identification(stream_rate_Hz >= 8 * f_hi_Hz,
           "stream_rate_Hz " + num(stream_rate_Hz) + " Hz must be at least 8 x f_hi_Hz (" +
               num(8 * f_hi_Hz) + " Hz) to resolve the highest line");
-  require(finite(settle_s) && settle_s >= 0 && settle_s <= 60, "settle_s must lie in 0..60 s");
-  require(finite(contact_current_A) && contact_current_A > 0 && contact_current_A <= 4,
+  require_identification(finite(settle_s) && settle_s >= 0 && settle_s <= 60, "settle_s must lie in 0..60 s");
+  require_identification(finite(contact_current_A) && contact_current_A > 0 && contact_current_A <= 4,
           "contact_current_A must lie in (0, 4] A");
-  require(finite(max_excursion_m) && max_excursion_m > 0, "max_excursion_m must be positive");
-  require(finite(frf.force_constant_N_per_A) && frf.force_constant_N_per_A > 0,
+  require_identification(finite(max_excursion_m) && max_excursion_m > 0, "max_excursion_m must be positive");
+  require_identification(finite(frf.force_constant_N_per_A) && frf.force_constant_N_per_A > 0,
           "frf.force_constant_N_per_A must be positive");
   if (method == SweepMethod::stepped) {
-    require(finite(step_Hz) && step_Hz >= 0.001 && step_Hz <= f_hi_Hz - f_lo_Hz,
+    require_identification(finite(step_Hz) && step_Hz >= 0.001 && step_Hz <= f_hi_Hz - f_lo_Hz,
             "step_Hz must lie in 0.001 Hz .. f_hi_Hz - f_lo_Hz");
-    require(settle_cycles >= 0 && settle_cycles <= 10000, "settle_cycles must lie in 0..10000");
-    require(finite(settle_min_s) && settle_min_s >= 0 && settle_min_s <= 100,
+    require_identification(settle_cycles >= 0 && settle_cycles <= 10000, "settle_cycles must lie in 0..10000");
+    require_identification(finite(settle_min_s) && settle_min_s >= 0 && settle_min_s <= 100,
             "settle_min_s must lie in 0..100 s");
-    require(measure_cycles >= 1 && measure_cycles <= 10000, "measure_cycles must lie in 1..10000");
+    require_identification(measure_cycles >= 1 && measure_cycles <= 10000, "measure_cycles must lie in 1..10000");
     return;
   }
-  require(finite(fundamental_Hz) && fundamental_Hz >= 0.001 && fundamental_Hz <= f_lo_Hz,
+  require_identification(finite(fundamental_Hz) && fundamental_Hz >= 0.001 && fundamental_Hz <= f_lo_Hz,
           "fundamental_Hz must lie in 0.001 Hz .. f_lo_Hz");
-  require(line_step >= 1 && line_step <= 1000, "line_step must lie in 1..1000");
-  require(discard_periods >= 0 && measured_periods >= 1 &&
+  require_identification(line_step >= 1 && line_step <= 1000, "line_step must lie in 1..1000");
+  require_identification(discard_periods >= 0 && measured_periods >= 1 &&
               discard_periods + measured_periods <= 65535,
           "discard_periods must be >= 0 and measured_periods >= 1 (at most 65535 in all)");
-  require(phase_seed != 0, "phase_seed must not be 0");
+  require_identification(phase_seed != 0, "phase_seed must not be 0");
   const double per_period = stream_rate_Hz / fundamental_Hz;
-  require(std::fabs(per_period - std::round(per_period)) < 1e-6 * per_period,
+  require_identification(std::fabs(per_period - std::round(per_period)) < 1e-6 * per_period,
           "stream_rate_Hz " + num(stream_rate_Hz) + " Hz must give a whole number of samples in "
               "the multisine's period 1/" + num(fundamental_Hz) + " Hz");
   const long first = first_harmonic(f_lo_Hz, fundamental_Hz, line_step);
   const long last = last_harmonic(f_hi_Hz, fundamental_Hz, line_step);
   const long lines = last >= first ? (last - first) / line_step + 1 : 0;
-  require(lines >= 3, "the band " + num(f_lo_Hz) + "-" + num(f_hi_Hz) + " Hz holds " +
+  require_identification(lines >= 3, "the band " + num(f_lo_Hz) + "-" + num(f_hi_Hz) + " Hz holds " +
                           std::to_string(lines) +
                           " excited lines (at least 3 for the fit): widen the band or lower "
                           "fundamental_Hz or line_step");
-  require(lines <= kMaxMultisineLines && last <= 65535,
+  require_identification(lines <= kMaxMultisineLines && last <= 65535,
           "the band holds " + std::to_string(lines) + " excited lines, the device plays at most " +
               std::to_string(kMaxMultisineLines) + ": raise line_step or fundamental_Hz");
 }

@@ -16,25 +16,14 @@ namespace {
 using experiment::f32;
 using experiment::wait_device_time;
 
-constexpr std::uint32_t kFloatCounts = 500;  // the coil left its rear stop (0.5 mm)
-constexpr double kCountM = 1e-6;
+using experiment::kCountM;
 
 /// Floats the coil at the ramp's start current and lets it settle on the specimen; returns the
 /// encoder position it rests at, m.
 double float_coil(Probe& probe, const IndentationSettings& s, const std::function<bool()>& cancelled) {
-  ContactWatchProgram w;
-  w.hold_current_A = static_cast<float>(s.start_A);
-  w.threshold_counts = kFloatCounts;
-  w.timeout_s = 5.0f;
-  probe.load(w);
-  probe.start();
-  const auto event = probe.wait_contact(10s);
-  if (!event)
-    throw TimeoutError("the coil to float off its rear stop at " + std::to_string(s.start_A) +
-                           " A (is the tip pressed against the specimen, or start_A below the "
-                           "float current?)",
-                       10.0, std::nullopt);
-  wait_device_time(probe, event->t_device_s + s.settle_s, cancelled);
+  const ContactEvent event = experiment::float_coil(
+      probe, s.start_A, "is the tip pressed against the specimen, or start_A below the float current?");
+  wait_device_time(probe, event.t_device_s + s.settle_s, cancelled);
   return probe.status().encoder_counts * kCountM;
 }
 

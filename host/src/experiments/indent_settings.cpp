@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "experiment_common.hpp"
 #include "palp/error.hpp"
 #include "palp/experiments.hpp"
 
@@ -9,8 +10,8 @@ namespace palp {
 
 namespace {
 
-constexpr double kCountM = 1e-6;
-constexpr double kMaxStreamRate_Hz = 1000;  // the issue: streamed at <= 1 kHz
+using experiment::kCountM;
+using experiment::kMaxStreamRate_Hz;
 
 // levels of a staircase from `from` toward `to` by `step`, `to` included when on the grid (the
 // firmware's grid_points)
@@ -18,7 +19,7 @@ double levels(double from, double to, double step) {
   return std::floor(std::fabs(to - from) / step + 1e-3) + 1;
 }
 
-void require(bool ok, const std::string& what) {
+void require_indentation(bool ok, const std::string& what) {
   if (!ok) throw ConfigError("indentation settings: " + what);
 }
 
@@ -54,20 +55,20 @@ double IndentationSettings::ramp_duration_s() const {
 
 void IndentationSettings::validate() const {
   auto finite = [](double v) { return std::isfinite(v); };
-  require(finite(start_A) && std::fabs(start_A) <= 4, "start_A must lie in -4..4 A");
-  require(finite(stop_A) && std::fabs(stop_A) <= 4, "stop_A must lie in -4..4 A");
-  require(stop_A > start_A, "stop_A must be above start_A (the ramp pushes into the specimen)");
-  require(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
+  require_indentation(finite(start_A) && std::fabs(start_A) <= 4, "start_A must lie in -4..4 A");
+  require_indentation(finite(stop_A) && std::fabs(stop_A) <= 4, "stop_A must lie in -4..4 A");
+  require_indentation(stop_A > start_A, "stop_A must be above start_A (the ramp pushes into the specimen)");
+  require_indentation(finite(step_A) && step_A >= 1e-4 && step_A <= stop_A - start_A,
           "step_A must lie in 0.0001 A .. stop_A - start_A");
-  require(finite(dwell_s) && dwell_s >= 1e-4 && dwell_s <= 100, "dwell_s must lie in 0.0001..100 s");
-  require(repetitions >= 1 && repetitions <= 1000, "repetitions must lie in 1..1000");
-  require(finite(displacement_limit_m) && displacement_limit_m >= 0 && displacement_limit_m <= 0.1,
+  require_indentation(finite(dwell_s) && dwell_s >= 1e-4 && dwell_s <= 100, "dwell_s must lie in 0.0001..100 s");
+  require_indentation(repetitions >= 1 && repetitions <= 1000, "repetitions must lie in 1..1000");
+  require_indentation(finite(displacement_limit_m) && displacement_limit_m >= 0 && displacement_limit_m <= 0.1,
           "displacement_limit_m must lie in 0..0.1 m (0: no limit)");
-  require(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= kMaxStreamRate_Hz,
+  require_indentation(finite(stream_rate_Hz) && stream_rate_Hz > 0 && stream_rate_Hz <= kMaxStreamRate_Hz,
           "stream_rate_Hz must lie in (0, 1000] Hz");
-  require(finite(zero_pressure_s) && zero_pressure_s >= 0.01 && zero_pressure_s <= 60,
+  require_indentation(finite(zero_pressure_s) && zero_pressure_s >= 0.01 && zero_pressure_s <= 60,
           "zero_pressure_s must lie in 0.01..60 s");
-  require(finite(settle_s) && settle_s >= 0 && settle_s <= 60, "settle_s must lie in 0..60 s");
+  require_indentation(finite(settle_s) && settle_s >= 0 && settle_s <= 60, "settle_s must lie in 0..60 s");
 }
 
 }  // namespace palp

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "experiment_common.hpp"
 #include "palp/analysis/indentation.hpp"
 
 namespace palp::detail {
@@ -15,7 +16,7 @@ namespace rb = proto::rb;
 using namespace std::chrono_literals;
 
 namespace {
-constexpr double kCountM = 1e-6;        // 1 encoder count = 1 µm (SPEC)
+using experiment::kCountM;
 constexpr double kSettleS = 1.2;        // the floating coil's ring-down (zeta 0.26, 16.5 rad/s)
 constexpr double kRestS = 0.05;         // the contact settles after the arm stops
 constexpr double kSearchSpeed = 10e-3;  // the coarse search, m/s

@@ -9,6 +9,8 @@
 
 namespace palp::rig_detail {
 
+inline constexpr double kMm = 1e-3;  ///< metres per millimetre: the files are in mm
+
 class Fields {
  public:
   /// Parses text (ConfigError on a syntax error or a top level that is not an object) and

@@ -28,11 +28,7 @@ using palp::SweepMethod;
 using palp::sim::test::SimProcess;
 using testing::HasSubstr;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using palp::sim::test::kSanitized;
 
 constexpr double kMountX_mm = 27, kMountZ_mm = -25;  // position 3, floating tip just touching
 

@@ -53,11 +53,7 @@ double k_at(const palp::MapAnalysis& a, int row, int column) {
   return v.value_or(std::nan(""));
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using palp::sim::test::kSanitized;
 
 TEST(Map, NineByNinePadShowsTheShallowChannelColumnsSofterAndTheDeepChannelRowsNot) {
   if (kSanitized) GTEST_SKIP() << "81 indentations of 37.5 s device time: the release build runs it";

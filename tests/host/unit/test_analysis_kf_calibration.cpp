@@ -21,8 +21,8 @@ namespace an = palp::analysis;
 namespace proto = palp::proto;
 using ::testing::HasSubstr;
 
-constexpr std::uint32_t kRate = 20000;
-constexpr std::int64_t kDecimation = 20;
+constexpr std::uint32_t kKfRate = 20000;
+constexpr std::int64_t kKfDecimation = 20;
 constexpr double kKv = 43.9;
 constexpr double kC = 0.3615;  // N: the balance's constant (preload and gravity)
 constexpr double kOrigin = 0.004;  // the recording's z of the stroke origin, m
@@ -54,16 +54,16 @@ proto::LoadRamp calibration_ramp() {
   return m;
 }
 
-struct Synth {
-  std::int64_t stream_start_tick = 4321 * kDecimation;
+struct StairSynth {
+  std::int64_t stream_start_tick = 4321 * kKfDecimation;
   std::int64_t program_offset_ticks = 6007;  // not on a sample
   double tau_s = 0.002;                      // the coil settles with this time constant
   double noise_i_A = 0, noise_z_m = 0;
   unsigned seed = 7;
 };
 
-palp::Recording ramp_recording(const proto::LoadRamp& m, const Synth& s) {
-  const proto::RampTiming t = proto::ramp_timing(m, kRate);
+palp::Recording ramp_recording(const proto::LoadRamp& m, const StairSynth& s) {
+  const proto::RampTiming t = proto::ramp_timing(m, kKfRate);
   const double step = m.step_A;
   std::mt19937 rng(s.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -72,7 +72,7 @@ palp::Recording ramp_recording(const proto::LoadRamp& m, const Synth& s) {
   double z_prev = balance_stroke(m.start_A);  // held at start_A before the ramp
   std::uint32_t level_prev = 0;
   std::int64_t changed = 0;  // program tick of the last level change
-  for (std::int64_t u = 0; u < s.program_offset_ticks + total + 4000; u += kDecimation) {
+  for (std::int64_t u = 0; u < s.program_offset_ticks + total + 4000; u += kKfDecimation) {
     const std::int64_t k = u - s.program_offset_ticks;
     const std::uint32_t level =
         k >= 0 && k < total ? proto::ramp_level_at(t, static_cast<std::uint64_t>(k)) : 0;
@@ -86,9 +86,9 @@ palp::Recording ramp_recording(const proto::LoadRamp& m, const Synth& s) {
     const double z = k <= changed ? target
                                   : target + (z_prev - target) *
                                                  std::exp(-static_cast<double>(k - changed) /
-                                                          (kRate * s.tau_s));
+                                                          (kKfRate * s.tau_s));
     palp::RecordingRow row;
-    row.t_s = static_cast<double>((s.stream_start_tick + u) * 1'000'000 / kRate) / 1e6;
+    row.t_s = static_cast<double>((s.stream_start_tick + u) * 1'000'000 / kKfRate) / 1e6;
     row.i_cmd_A = std::round(i / proto::kCurrentLsb_A) * proto::kCurrentLsb_A;
     row.i_A = i + s.noise_i_A * normal(rng);
     row.z_mm = (kOrigin + z + s.noise_z_m * normal(rng)) * 1e3;
@@ -99,7 +99,7 @@ palp::Recording ramp_recording(const proto::LoadRamp& m, const Synth& s) {
 
 TEST(KfStaticPoints, EveryStairGivesItsBalanceFromTheRampsSchedule) {
   const proto::LoadRamp m = calibration_ramp();
-  const auto points = an::kf_static_points(ramp_recording(m, Synth{}), m, kRate, kOrigin);
+  const auto points = an::kf_static_points(ramp_recording(m, StairSynth{}), m, kKfRate, kOrigin);
   ASSERT_EQ(points.size(), 209u);  // 105 up, 104 down
   for (std::size_t q = 0; q < points.size(); ++q) {
     const std::uint32_t level = q < 105 ? static_cast<std::uint32_t>(q)
@@ -115,14 +115,14 @@ TEST(KfStaticPoints, EveryStairGivesItsBalanceFromTheRampsSchedule) {
 
 TEST(KfStaticPoints, ATruncatedRecordingIsAConfigErrorNamingTheTimes) {
   const proto::LoadRamp m = calibration_ramp();
-  const Synth s;
+  const StairSynth s;
   palp::Recording whole = ramp_recording(m, s), rec;
   for (std::size_t k = 0; k < 5000; ++k)
     rec.append({.t_s = whole.t_s[k], .i_cmd_A = (*whole.i_cmd_A)[k], .i_A = whole.i_A[k],
                 .z_mm = whole.z_mm[k]});
   // stream from tick 86420 (4.321 s), the ramp 6007 ticks later (4.62135 s), 209 x 50 ms
   try {
-    an::kf_static_points(rec, m, kRate, kOrigin);
+    an::kf_static_points(rec, m, kKfRate, kOrigin);
     FAIL();
   } catch (const palp::ConfigError& e) {
     // the start is known to a sample interval: [4.62105, 4.62200] s, the earliest named
@@ -133,10 +133,10 @@ TEST(KfStaticPoints, ATruncatedRecordingIsAConfigErrorNamingTheTimes) {
 
 TEST(FitKfTable, RecoversThePlantsTableAtItsNodesWithNoise) {
   const proto::LoadRamp m = calibration_ramp();
-  Synth s;
+  StairSynth s;
   s.noise_i_A = 2e-3;  // the plant's current-sense noise, averaged over 25 samples
   s.noise_z_m = 1e-6;
-  const auto points = an::kf_static_points(ramp_recording(m, s), m, kRate, kOrigin);
+  const auto points = an::kf_static_points(ramp_recording(m, s), m, kKfRate, kOrigin);
   const std::vector<double> nodes = {0.0, 0.017, 0.0235, 0.034};  // the plant's
   const an::KfCalibration c = an::fit_kf_table(points, kKv, nodes);
   ASSERT_EQ(c.kf_N_per_A.size(), 4u);
@@ -156,7 +156,7 @@ TEST(FitKfTable, RecoversThePlantsTableAtItsNodesWithNoise) {
 
 TEST(FitKfTable, NoiseFreeIsExactAndTheSlopeIsRecoveredWhereKvDsDiIsBiased) {
   const proto::LoadRamp m = calibration_ramp();
-  const auto points = an::kf_static_points(ramp_recording(m, Synth{}), m, kRate, kOrigin);
+  const auto points = an::kf_static_points(ramp_recording(m, StairSynth{}), m, kKfRate, kOrigin);
   const std::vector<double> nodes = {0.0, 0.017, 0.0235, 0.034};
   const an::KfCalibration c = an::fit_kf_table(points, kKv, nodes);
   for (std::size_t j = 0; j < nodes.size(); ++j)
@@ -177,10 +177,10 @@ TEST(FitKfTable, WithManyNodesOnlyAnAnchorFixesKfAndTheUnanchoredFitSaysSo) {
   // every constant c has its exact K_f = (k_v s + c) / i(s): with 16 nodes the unanchored fit is
   // nearly singular; the anchor (the paper's 2.918 N/A, in the table's flat part) fixes it
   const proto::LoadRamp m = calibration_ramp();
-  Synth s;
+  StairSynth s;
   s.noise_i_A = 2e-3;
   s.noise_z_m = 1e-6;
-  const auto points = an::kf_static_points(ramp_recording(m, s), m, kRate, kOrigin);
+  const auto points = an::kf_static_points(ramp_recording(m, s), m, kKfRate, kOrigin);
   const std::vector<double> nodes = an::kf_nodes_for(points);
   ASSERT_EQ(nodes.size(), 16u);
   const an::KfCalibration loose = an::fit_kf_table(points, kKv, nodes);
