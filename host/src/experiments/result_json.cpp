@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "experiment_common.hpp"
 #include "palp/protocol/messages.hpp"
 #include "palp/result.hpp"
 
@@ -20,14 +21,7 @@ using analysis::Value;
 constexpr double kMm = 1e3;          // m -> mm
 constexpr double kNPerMm = 1e-3;     // N/m -> N/mm
 
-/// The shortest decimal that reads back as the f32 (3.2f -> 3.2), as a double.
-double f32(float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  double d = 0;
-  std::from_chars(buf, r.ptr, d);
-  return d;
-}
+using experiment::f32;
 
 json f32s(const float* v, std::size_t n) {
   json a = json::array();
