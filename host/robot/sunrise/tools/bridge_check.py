@@ -125,6 +125,7 @@ class Bridge:
         control = decode(rb.HostControl, client.read(rb.HostControl.ADDRESS, rb.HostControl.LENGTH))
         self.heartbeat = control["host_heartbeat"]
         self.stop_value = control["stop_request"]
+        self.watchdog_ms = control["watchdog_ms"]
         self.seq = self.status()["ack_seq"]
 
     def status(self):
@@ -142,6 +143,10 @@ class Bridge:
     def command(self, code, **fields):
         """Writes a command block whole with the next seq and waits for its ack."""
         self.seq = self.seq % 0xFFFF + 1
+        # a motion is refused while the host heartbeat is stale (rule 9): this process may have
+        # started longer than watchdog_ms after the last beat, so beat first (the bridge takes
+        # the control block before the command block in its cycle, section 8.3)
+        self.beat()
         regs = [0] * rb.Command.LENGTH
         regs[0], regs[1] = self.seq, code
         for name, address, kind, _unit in rb.Command.REGISTERS:
@@ -202,7 +207,17 @@ def cmd_status(b, _args):
 
 
 def cmd_watchdog(b, args):
+    """Measures the bridge's watchdog at --watchdog-ms, then restores the watchdog it had."""
     b.c.write(rb.HostControl.WATCHDOG_MS, [args.watchdog_ms])
+    try:
+        return measure_watchdog(b, args)
+    finally:
+        b.beat()
+        b.c.write(rb.HostControl.WATCHDOG_MS, [b.watchdog_ms])
+        print("watchdog_ms restored to %d" % b.watchdog_ms)
+
+
+def measure_watchdog(b, args):
     end = time.monotonic() + 2.0
     while time.monotonic() < end:
         b.beat()
@@ -220,7 +235,6 @@ def cmd_watchdog(b, args):
         time.sleep(0.001)
     print("watchdog_ms %d: host_heartbeat_ok cleared %.0f ms after the last beat"
           % (args.watchdog_ms, (time.monotonic() - t0) * 1e3))
-    b.beat()
     return 0
 
 

@@ -8,15 +8,72 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHECK = os.path.join(HERE, "bridge_check.py")
+sys.path.insert(0, HERE)
+import bridge_check  # noqa: E402
+import palp_rb_map as rb  # noqa: E402
 
 
 def run(where, *args):
     p = subprocess.run([sys.executable, CHECK, args[0], where] + list(args[1:]), capture_output=True, text=True,
                        timeout=30)
     return p.returncode, p.stdout + p.stderr
+
+
+def connect(where):
+    """A client of bridge_check's own. The bridge serves one client at a time and closes a second
+    connection at once: until it has seen the previous client's close, try again (up to 2 s)."""
+    for attempt in range(100):
+        c = bridge_check.Client(where)
+        try:
+            c.read(rb.HostControl.WATCHDOG_MS, 1)
+            return c
+        except bridge_check.BridgeError:
+            c.sock.close()
+            if attempt == 99:
+                raise
+            time.sleep(0.02)
+
+
+def watchdog_ms(where, write=None):
+    """Writes watchdog_ms when given and reads it back."""
+    c = connect(where)
+    try:
+        if write is not None:
+            c.write(rb.HostControl.WATCHDOG_MS, [write])
+        return c.read(rb.HostControl.WATCHDOG_MS, 1)[0]
+    finally:
+        c.sock.close()
+
+
+def stale_start_command_accepted(where):
+    """bridge_check's Bridge, first contact after the heartbeat went stale, a 5 mm move whose
+    first poll comes 30 ms (six cycles) after the command block; True when the move is accepted."""
+    c = connect(where)
+    try:
+        b = bridge_check.Bridge(c)
+        prompt_wait = b.wait
+
+        def late_wait(ready, timeout_s, what):
+            time.sleep(0.03)
+            return prompt_wait(ready, timeout_s, what)
+
+        b.wait = late_wait
+        try:
+            seq = b.command(rb.CommandCode.MOVE_LIN_REL, speed=50000, z_um=5000)
+        except bridge_check.BridgeError as e:
+            print("command refused: %s" % e)
+            return False
+        b.wait = prompt_wait
+        b.wait(lambda s: s["done_seq"] == seq, 2.0, "the move")
+        seq = b.command(rb.CommandCode.MOVE_LIN_REL, speed=50000, z_um=-5000)  # back where it was
+        b.wait(lambda s: s["done_seq"] == seq, 2.0, "the move back")
+        return True
+    finally:
+        c.sock.close()
 
 
 def main(argv):
@@ -51,7 +108,18 @@ def main(argv):
         rc, out = run(where, "watchdog", "--watchdog-ms", "100")
         m = re.search(r"host_heartbeat_ok cleared (\d+) ms", out)
         # stale after more than 100 ms, seen by the next 5 ms cycle, read by the next poll
-        expect(rc == 0 and m and 95 <= int(m.group(1)) <= 500, "watchdog: exit %d, cleared after 95..500 ms" % rc, out)
+        expect(rc == 0 and m and 95 <= int(m.group(1)) <= 500 and "watchdog_ms restored to 500" in out,
+               "watchdog: exit %d, cleared after 95..500 ms, the bridge's 500 ms put back" % rc, out)
+        watchdog = watchdog_ms(where)
+        expect(watchdog == 500, "after watchdog: watchdog_ms %d, expected 500" % watchdog, "")
+
+        # a tool that starts after the heartbeat went stale beats before its command, so the
+        # command is not refused even when the tool's first poll comes a few cycles late (a loaded
+        # machine): the late poll is made certain by holding the first wait back 30 ms
+        watchdog_ms(where, 100)
+        time.sleep(0.3)
+        expect(stale_start_command_accepted(where), "a command after a stale heartbeat was refused", "")
+        watchdog_ms(where, 500)
 
         rc, out = run(where, "stop-latency", "--runs", "3", "--speed-mm-per-s", "50", "--distance-mm", "20",
                       "--stop-after-ms", "60")
@@ -85,7 +153,8 @@ def main(argv):
     for f in failures:
         print("FAIL: " + f)
     if not failures:
-        print("bridge_check.py: id, status, watchdog, stop-latency and approach pass against the Java bridge")
+        print("bridge_check.py: id, status, watchdog (and its restore), a command after a stale heartbeat, "
+              "stop-latency and approach pass against the Java bridge")
     return 1 if failures else 0
 
 
