@@ -6,13 +6,12 @@
 
 #include <atomic>
 #include <cerrno>
-#include <chrono>
 #include <cstring>
-#include <ctime>
 
 #include "palp/error.hpp"
 #include "palp/probe.hpp"
 #include "palp/result.hpp"
+#include "recording/internal.hpp"
 
 namespace palp {
 
@@ -34,15 +33,6 @@ void fsync_path(const fs::path& p, bool directory) {
 }
 
 }  // namespace
-
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 void write_text_file(const fs::path& p, const std::string& text) {
   const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -76,7 +66,7 @@ fs::path prepare_result_directory(const fs::path& dir_in, Overwrite overwrite, c
 }
 
 nlohmann::json result_head(const char* experiment) {
-  return {{"schema", kResultSchema}, {"experiment", experiment}, {"created_utc", utc_now()}, {"sdk_version", sdk_version()}};
+  return {{"schema", kResultSchema}, {"experiment", experiment}, {"created_utc", recording_detail::utc_now()}, {"sdk_version", sdk_version()}};
 }
 
 void write_result_directory(const fs::path& dir, Overwrite overwrite,

@@ -13,9 +13,6 @@
 
 namespace palp {
 
-/// "2025-01-31T14:05:09Z", now.
-std::string utc_now();
-
 /// Writes text to a new file and flushes it; RecordingError naming the file on failure.
 void write_text_file(const std::filesystem::path& p, const std::string& text);
 

@@ -72,17 +72,7 @@ void Toucher::prepare() {
   Params p = probe_.params();
   p.contact_output = proto::ContactOutputMode::active_high;
   probe_.set_params(p);
-  // float the coil: a watch that fires as the coil leaves its rear stop keeps its current on
-  ContactWatchProgram w;
-  w.hold_current_A = static_cast<float>(rig_.watch_current_A);
-  w.threshold_counts = 1000;
-  w.timeout_s = 5.0f;
-  probe_.load(w);
-  probe_.start();
-  if (!probe_.wait_contact(10s))
-    throw TimeoutError("the coil to float off its rear stop at " + std::to_string(rig_.watch_current_A) +
-                           " A (is watch_current_A above the float current?)",
-                       10.0, std::nullopt);
+  experiment::float_coil(probe_, rig_.watch_current_A, "is watch_current_A above the float current?");
   wait_device(kSettleS);
   floating_stroke_m_ = stroke_now_m();
   floating_ = true;

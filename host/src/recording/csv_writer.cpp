@@ -63,15 +63,6 @@ void sync_directory(const fs::path& dir) {
   ::close(fd);
 }
 
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 char* put(char* p, double v) { return std::to_chars(p, p + rd::kNumberChars, v).ptr; }
 template <class Int>
 char* put_int(char* p, Int v) {
@@ -79,6 +70,15 @@ char* put_int(char* p, Int v) {
 }
 
 }  // namespace
+
+std::string rd::utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
 
 struct RecordingWriter::Impl {
   fs::path csv_final, json_final, csv_temporary, json_temporary;
@@ -201,7 +201,7 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
     throw ConfigError(csv_name + ": no row was appended; a recording needs at least one");
   Sidecar s = sidecar;
   if (s.sdk_version.empty()) s.sdk_version = PALP_SDK_VERSION;
-  if (s.created_utc.empty()) s.created_utc = utc_now();
+  if (s.created_utc.empty()) s.created_utc = rd::utc_now();
   s.csv_rows = w.rows;
   s.csv_crc32 = 0;
   (void)rd::sidecar_document(s);  // refuses a bad sidecar before anything is closed or renamed

@@ -77,4 +77,7 @@ nlohmann::ordered_json sidecar_document(const Sidecar& sidecar);
 /// "a string", "an object", "null", ...: a JSON value's kind for messages.
 std::string json_kind(const nlohmann::json& value);
 
+/// "2025-01-31T14:05:09Z", now: a sidecar's and a result.json's created_utc.
+std::string utc_now();
+
 }  // namespace palp::recording_detail
