@@ -75,6 +75,10 @@ class Client:
         self.request(struct.pack(">BHHB", 16, address, len(values), 2 * len(values))
                      + struct.pack(">%dH" % len(values), *values))
 
+    def close(self):
+        """Closes the connection; the bridge then serves the next client."""
+        self.sock.close()
+
 
 def i32(hi, lo):
     v = (hi << 16) | lo

@@ -32,7 +32,7 @@ def connect(where):
             c.read(rb.HostControl.WATCHDOG_MS, 1)
             return c
         except bridge_check.BridgeError:
-            c.sock.close()
+            c.close()
             if attempt == 99:
                 raise
             time.sleep(0.02)
@@ -46,7 +46,7 @@ def watchdog_ms(where, write=None):
             c.write(rb.HostControl.WATCHDOG_MS, [write])
         return c.read(rb.HostControl.WATCHDOG_MS, 1)[0]
     finally:
-        c.sock.close()
+        c.close()
 
 
 def stale_start_command_accepted(where):
@@ -73,7 +73,7 @@ def stale_start_command_accepted(where):
         b.wait(lambda s: s["done_seq"] == seq, 2.0, "the move back")
         return True
     finally:
-        c.sock.close()
+        c.close()
 
 
 def main(argv):
