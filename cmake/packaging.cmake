@@ -3,9 +3,12 @@
 #   cmake --install build/<preset> --prefix /opt/palp
 #
 # installs, under the prefix:
-#   lib/libpalp_sdk.a, libpalp_protocol.a, libpalp_protocol_text.a  (the SDK and what it links)
+#   lib/libpalp_{analysis,device,experiments}.a, libpalp_protocol.a, libpalp_protocol_text.a
+#                                                                    (the SDK and what it links)
 #   include/palp/*.hpp, include/palp/protocol/*.hpp                  (host/include, protocol/include)
-#   lib/cmake/palp/palpConfig.cmake (+ version, targets)             find_package(palp) -> palp::sdk
+#   lib/cmake/palp/palpConfig.cmake (+ version, targets)             find_package(palp) -> palp::sdk,
+#                                                                    palp::analysis, ::device,
+#                                                                    ::experiments
 #   bin/palpctl, bin/palp-sim                                        the tools
 #   lib/udev/rules.d/70-palp.rules                                   so a non-root user can open
 #                                                                    the controller (udev reads
@@ -47,11 +50,13 @@ endfunction()
 palp_exportable_includes(palp_protocol)
 palp_exportable_includes(palp_protocol_text)
 
-set_target_properties(palp_sdk PROPERTIES EXPORT_NAME sdk)
+foreach(lib sdk analysis device experiments)
+  set_target_properties(palp_${lib} PROPERTIES EXPORT_NAME ${lib})
+endforeach()
 set_target_properties(palp_protocol PROPERTIES EXPORT_NAME protocol)
 set_target_properties(palp_protocol_text PROPERTIES EXPORT_NAME protocol_text)
 
-install(TARGETS palp_sdk palp_protocol palp_protocol_text
+install(TARGETS palp_sdk palp_analysis palp_device palp_experiments palp_protocol palp_protocol_text
         EXPORT palpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/include/ ${PROJECT_SOURCE_DIR}/protocol/include/

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "common.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/result.hpp"
 #include "palp/analysis/indentation.hpp"
 #include "palp/analysis/pressure.hpp"

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "common.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/result.hpp"
 
 namespace palpctl {

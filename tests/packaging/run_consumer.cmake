@@ -38,10 +38,11 @@ if(EXISTS ${PALP_SOURCE_DIR}/host/udev/70-palp.rules AND
    NOT EXISTS ${prefix}/lib/udev/rules.d/70-palp.rules)
   message(FATAL_ERROR "the install lacks lib/udev/rules.d/70-palp.rules")
 endif()
-file(GLOB_RECURSE libs ${prefix}/*/libpalp_sdk.a ${prefix}/*/libpalp_protocol.a)
+file(GLOB_RECURSE libs ${prefix}/*/libpalp_analysis.a ${prefix}/*/libpalp_device.a
+     ${prefix}/*/libpalp_experiments.a ${prefix}/*/libpalp_protocol.a)
 list(LENGTH libs nlibs)
-if(NOT nlibs EQUAL 2)
-  message(FATAL_ERROR "expected libpalp_sdk.a and libpalp_protocol.a under ${prefix}, found: ${libs}")
+if(NOT nlibs EQUAL 4)
+  message(FATAL_ERROR "expected libpalp_{analysis,device,experiments}.a and libpalp_protocol.a under ${prefix}, found: ${libs}")
 endif()
 
 step("consumer configure" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${WORK_DIR}/consumer

@@ -1,5 +1,5 @@
 // Stiffness mapping (issue 6; the paper's §V): for each point of a plan, touch the surface with a
-// guarded approach (trace.hpp), indent it with the quasi-static staircase (experiments.hpp),
+// guarded approach (trace.hpp), indent it with the quasi-static staircase (indent.hpp),
 // retract, move on; then the stiffness map, the surface it was measured on, and the soft and
 // stiff lines found in it.
 //
@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/trace.hpp"
 
 namespace palp {

@@ -33,7 +33,7 @@
 #include <nlohmann/json.hpp>
 
 #include "palp/analysis/indentation.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/probe.hpp"
 #include "palp/recording.hpp"
 

@@ -38,15 +38,10 @@
 #include <optional>
 #include <string>
 
+#include "palp/pose.hpp"
 #include "palp/protocol/robot_bridge/codec.hpp"
 
 namespace palp {
-
-/// A TCP pose: position in m, KUKA ZYX Euler angles in rad.
-struct Pose {
-  double x_m = 0.0, y_m = 0.0, z_m = 0.0;
-  double a_rad = 0.0, b_rad = 0.0, c_rad = 0.0;
-};
 
 /// Who the bridge is (the identification block) and how it was reached.
 struct RobotInfo {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "palp/analysis/frequency_response.hpp"
-#include "palp/recording.hpp"
+#include "palp/recording_types.hpp"
 
 namespace palp::analysis::detail {
 

@@ -1,11 +1,11 @@
-// The quasi-static indentation (experiments.hpp): zero pressures, float the coil, stream the
+// The quasi-static indentation (indent.hpp): zero pressures, float the coil, stream the
 // device's staircase ramp into a recording, analyse it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <utility>
 
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/result.hpp"
 #include "experiment_common.hpp"
 

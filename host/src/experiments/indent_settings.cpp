@@ -1,10 +1,10 @@
-// IndentationSettings (experiments.hpp): presets, the device program, checks.
+// IndentationSettings (indent.hpp): presets, the device program, checks.
 #include <cmath>
 #include <string>
 
 #include "experiment_common.hpp"
 #include "palp/error.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 
 namespace palp {
 

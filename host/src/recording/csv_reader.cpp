@@ -314,7 +314,7 @@ class CsvReader {
   std::uint32_t crc32_ = 0;
 };
 
-void check_sidecar_matches(const Sidecar& s, const fs::path& csv, const fs::path& json,
+void check_sidecar_matches(const Sidecar& s, const fs::path& csv, const fs::path& sidecar_json,
                            std::uint64_t rows, std::uint32_t crc) {
   const std::string why =
       ": the two files are not from one write (a CSV edited by hand, or an overwrite that was "
@@ -322,11 +322,11 @@ void check_sidecar_matches(const Sidecar& s, const fs::path& csv, const fs::path
       "ReadOptions{.check_sidecar_matches_csv = false}";
   const std::string csv_name = csv.filename().string();
   if (s.csv_rows && *s.csv_rows != rows)
-    throw RecordingError(json.string(), 0,
+    throw RecordingError(sidecar_json.string(), 0,
                          "\"csv_rows\" is " + std::to_string(*s.csv_rows) + ", but " + csv_name +
                              " has " + std::to_string(rows) + " data rows" + why);
   if (s.csv_crc32 && *s.csv_crc32 != crc)
-    throw RecordingError(json.string(), 0,
+    throw RecordingError(sidecar_json.string(), 0,
                          "\"csv_crc32\" is " + rd::crc32_hex(*s.csv_crc32) + ", but " + csv_name +
                              "'s CRC-32 is " + rd::crc32_hex(crc) + why);
 }
@@ -340,11 +340,11 @@ Recording read_recording(const fs::path& csv, const ReadOptions& options) {
     r.rep = split_repetitions_at_current_minima(r.i_A);
     r.rep_source = RepSource::split_at_current_minima;
   }
-  const fs::path json = recording_sidecar_path(csv);
-  if (options.read_sidecar && fs::exists(json)) {
-    Sidecar s = read_sidecar(json);
+  const fs::path sidecar_json = recording_sidecar_path(csv);
+  if (options.read_sidecar && fs::exists(sidecar_json)) {
+    Sidecar s = read_sidecar(sidecar_json);
     if (options.check_sidecar_matches_csv)
-      check_sidecar_matches(s, csv, json, r.size(), reader.crc32());
+      check_sidecar_matches(s, csv, sidecar_json, r.size(), reader.crc32());
     r.sidecar = std::move(s);
   }
   return r;

@@ -16,7 +16,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/probe.hpp"
 #include "sim_process.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "palp/analysis/indentation.hpp"
 #include "palp/error.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 
 namespace {
 

@@ -35,7 +35,7 @@
 
 #include "palp/analysis/frf.hpp"
 #include "palp/protocol/messages.hpp"
-#include "palp/recording.hpp"
+#include "palp/recording_types.hpp"
 
 namespace palp::analysis {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "palp/protocol/messages.hpp"
-#include "palp/recording.hpp"
+#include "palp/recording_types.hpp"
 
 namespace palp::analysis {
 

@@ -31,7 +31,7 @@
 #include <optional>
 #include <vector>
 
-#include "palp/robot.hpp"
+#include "palp/pose.hpp"
 
 namespace palp::analysis {
 

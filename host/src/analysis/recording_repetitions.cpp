@@ -1,9 +1,9 @@
 // Repetitions of a recording without a rep column: split at the current's minima, with a
-// Schmitt trigger so noise cannot split (the rule is documented in recording.hpp).
+// Schmitt trigger so noise cannot split (the rule is documented in recording_types.hpp).
 #include <algorithm>
 #include <cmath>
 
-#include "palp/recording.hpp"
+#include "palp/recording_types.hpp"
 
 namespace palp {
 namespace {
