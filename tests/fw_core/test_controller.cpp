@@ -65,11 +65,7 @@ class Bench {
     while ((n = c_.transmit(buf, sizeof buf)) > 0) {
       host_.feed_messages(
           buf, n,
-          [&](const FrameHeader& h, const auto& m) {
-            std::vector<u8> p(kMaxPayload);
-            p.resize(static_cast<std::size_t>(encode_payload(m, p.data(), p.size())));
-            got_.push_back({h, m.kName, p});
-          },
+          [&](const FrameHeader& h, const auto& m) { got_.push_back({h, m.kName, payload_of(m)}); },
           [&](Reject r) { ADD_FAILURE() << "device sent a bad frame: " << reject_name(r); });
     }
   }
@@ -90,6 +86,12 @@ class Bench {
     auto v = all<M>();
     EXPECT_FALSE(v.empty()) << "no " << M::kName << " received";
     return v.empty() ? M{} : v.back();
+  }
+  template <class M>
+  static std::vector<u8> payload_of(const M& m) {
+    std::vector<u8> p(kMaxPayload);
+    p.resize(static_cast<std::size_t>(encode_payload(m, p.data(), p.size())));
+    return p;
   }
   const Received& last_frame() const { return got_.back(); }
   void clear() { got_.clear(); }
@@ -188,6 +190,102 @@ TEST(Controller, BadRequestsAreRefusedWithTheirReasonAndField) {
   EXPECT_EQ(b.last<Nak>().error, ErrorCode::unknown_message);
   EXPECT_EQ(b.last_frame().header.seq, 7);
   EXPECT_EQ(b.c_.health().rx_unknown_message, 1u);
+}
+
+TEST(Controller, CrossFieldRefusalsNameTheSpecTablesFieldNumbers) {
+  Bench b;
+  SetParams p;
+  p.travel_min_counts = p.travel_max_counts;  // each in range, but no travel left
+  b.send(p, 1);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::out_of_range);
+  EXPECT_EQ(b.last<Nak>().field_index, 4);  // SPEC.md §10.1 SetParams #4 travel_min_counts
+
+  b.send(EnterBootloader{0x544F4F41u}, 2);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::bad_magic);
+  EXPECT_EQ(b.last<Nak>().field_index, 0);  // EnterBootloader #0 magic
+
+  SetCalibration c;
+  c.kf_position_counts.push_back(0);
+  c.kf_position_counts.push_back(10000);
+  c.kf_N_per_A.push_back(3.5f);  // one force constant for two positions
+  b.send(c, 3);
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::calibration_invalid);
+  EXPECT_EQ(b.last<Nak>().field_index, 2);  // SetCalibration #2 kf_N_per_A
+}
+
+/// How many fields of m differ from its message's defaults.
+template <class M>
+std::size_t fields_unlike_defaults(const M& m) {
+  const M defaults{};
+  std::size_t differing = 0, k = 0;
+  m.visit([&](const FieldInfo&, const auto& value) {
+    std::size_t j = 0;
+    defaults.visit([&](const FieldInfo&, const auto& default_value) {
+      if constexpr (std::is_same_v<decltype(value), decltype(default_value)>)
+        if (j == k && !(value == default_value)) ++differing;
+      ++j;
+    });
+    ++k;
+  });
+  return differing;
+}
+
+TEST(Controller, SetParamsWithEveryFieldChangedComesBackExactlyFromGetParams) {
+  SetParams p;
+  p.current_clamp_A = 2.5f;
+  p.i2t_continuous_A = 1.5f;
+  p.i2t_limit_A2s = 70.0f;
+  p.i2t_tau_s = 90.0f;
+  p.travel_min_counts = -2000;
+  p.travel_max_counts = 30000;
+  p.heartbeat_timeout_ms = 750;
+  p.control_rate_Hz = 40000;
+  p.supply_V = 12.0f;
+  p.contact_output = ContactOutputMode::active_low;
+  p.contact_output_hold_ms = 250;
+  ASSERT_EQ(fields_unlike_defaults(p), SetParams::kFields.size());
+
+  Bench b;
+  b.send(p, 1);
+  b.pump();
+  // Params and SetParams share their field list, so their payloads are byte for byte the same
+  const std::vector<u8> sent = b.payload_of(p);
+  ASSERT_EQ(b.last_frame().name, "Params");
+  EXPECT_EQ(b.last_frame().payload, sent);
+  b.send(GetParams{}, 2);
+  b.pump();
+  ASSERT_EQ(b.last_frame().name, "Params");
+  EXPECT_EQ(b.last_frame().payload, sent);
+  EXPECT_EQ(b.c_.control_rate_Hz(), 40000u);
+}
+
+TEST(Controller, SetCalibrationWithEveryFieldChangedComesBackExactlyFromGetCalibration) {
+  SetCalibration c;
+  // layout_version is informative: the device always answers with its own (2, the default)
+  for (const i32 x : {0, 9000, 21000, 34000}) c.kf_position_counts.push_back(x);
+  for (const f32 k : {3.84f, 3.6f, 3.2f, 2.918f}) c.kf_N_per_A.push_back(k);
+  c.current_offset_A = 0.012f;
+  c.current_gain = 1.03f;
+  c.pressure_offset_Pa = {-15.0f, -5.0f, 0.5f, 5.0f, 15.0f, 25.0f};
+  c.pressure_gain = {0.9f, 0.95f, 1.05f, 1.1f, 1.15f, 1.2f};
+  c.spring_k_N_per_m = 41.5f;
+  c.stroke_origin_counts = -321;
+  c.stroke_origin_valid = 1;
+  ASSERT_EQ(fields_unlike_defaults(c), SetCalibration::kFields.size() - 1);
+
+  Bench b;
+  b.send(c, 1);
+  b.pump();
+  const std::vector<u8> sent = b.payload_of(c);
+  ASSERT_EQ(b.last_frame().name, "Calibration");
+  EXPECT_EQ(b.last_frame().payload, sent);
+  b.send(GetCalibration{}, 2);
+  b.pump();
+  ASSERT_EQ(b.last_frame().name, "Calibration");
+  EXPECT_EQ(b.last_frame().payload, sent);
 }
 
 TEST(Controller, AHoldProgramDrivesTheCoilToItsCurrent) {

@@ -235,12 +235,6 @@ TEST(Codec, UnknownEnumValuesFromANewerPeerAreKeptNotRejected) {
 
 // ---- range checks --------------------------------------------------------------------------
 
-int field_index(const MessageInfo& m, const char* name) {
-  for (std::size_t k = 0; k < m.field_count; ++k)
-    if (std::string(m.fields[k].name) == name) return static_cast<int>(k);
-  return -2;
-}
-
 TEST(Ranges, DefaultsOfEveryHostToDeviceMessageAreInRange) {
   for_each_message_type([&](auto m) {
     using M = decltype(m);
@@ -251,8 +245,7 @@ TEST(Ranges, DefaultsOfEveryHostToDeviceMessageAreInRange) {
 }
 
 TEST(Ranges, HeartbeatTimeoutMustLieBetween50MsAnd10S) {
-  const int index = field_index(*find_message(static_cast<u8>(MessageId::SetParams)),
-                                "heartbeat_timeout_ms");
+  const int index = field_index_of<&SetParams::heartbeat_timeout_ms>();
   SetParams p;
   p.heartbeat_timeout_ms = 49;
   EXPECT_EQ(p.first_out_of_range(), index);
@@ -271,8 +264,7 @@ TEST(Ranges, NaNIsOutOfRange) {
 }
 
 TEST(Ranges, EveryElementOfAnArrayIsChecked) {
-  const int index =
-      field_index(*find_message(static_cast<u8>(MessageId::SetCalibration)), "kf_N_per_A");
+  const int index = field_index_of<&SetCalibration::kf_N_per_A>();
   SetCalibration c;
   c.kf_N_per_A.push_back(2.918f);
   c.kf_N_per_A.push_back(25.0f);  // beyond 20 N/A
@@ -286,8 +278,7 @@ TEST(Ranges, AnOpenUpperBoundAcceptsTheTypesMaximum) {
   m.phase_seed = 0xFFFFFFFFu;
   EXPECT_EQ(m.first_out_of_range(), -1);
   m.phase_seed = 0;  // the generator needs a non-zero seed
-  EXPECT_EQ(m.first_out_of_range(),
-            field_index(*find_message(static_cast<u8>(MessageId::LoadMultisine)), "phase_seed"));
+  EXPECT_EQ(m.first_out_of_range(), field_index_of<&LoadMultisine::phase_seed>());
 }
 
 }  // namespace

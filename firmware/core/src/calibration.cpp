@@ -54,11 +54,14 @@ void clear_unused(A& values, std::size_t count) {
 
 /// Table shape: 1..16 points, positions strictly increasing, both vectors the same length.
 /// Returns the proto::Calibration field index at fault, or -1.
+constexpr int kPositionsField = proto::field_index_of<&proto::Calibration::kf_position_counts>();
+constexpr int kForceConstantsField = proto::field_index_of<&proto::Calibration::kf_N_per_A>();
+
 int check_table_shape(const proto::Calibration& m) {
-  if (m.kf_position_counts.size == 0) return 1;
-  if (m.kf_N_per_A.size != m.kf_position_counts.size) return 2;
+  if (m.kf_position_counts.size == 0) return kPositionsField;
+  if (m.kf_N_per_A.size != m.kf_position_counts.size) return kForceConstantsField;
   for (std::size_t k = 1; k < m.kf_position_counts.size; ++k)
-    if (m.kf_position_counts.items[k] <= m.kf_position_counts.items[k - 1]) return 1;
+    if (m.kf_position_counts.items[k] <= m.kf_position_counts.items[k - 1]) return kPositionsField;
   return -1;
 }
 
@@ -270,7 +273,7 @@ int from_proto(const proto::Calibration& message, CalibrationData& out) {
 }
 
 int first_invalid_calibration_field(const CalibrationData& data) {
-  if (data.kf_count == 0 || data.kf_count > kForceConstantTableCapacity) return 1;
+  if (data.kf_count == 0 || data.kf_count > kForceConstantTableCapacity) return kPositionsField;
   const proto::Calibration m = to_proto(data);
   const int out_of_range = m.first_out_of_range();
   if (out_of_range >= 0) return out_of_range;

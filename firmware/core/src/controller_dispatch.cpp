@@ -123,7 +123,8 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (std::is_same_v<M, GetDeviceInfo>) {
       reply(h, device_info());
     } else if constexpr (std::is_same_v<M, EnterBootloader>) {
-      if (m.magic != 0x544F4F42u) return nak(h, ErrorCode::bad_magic, 0);
+      if (m.magic != 0x544F4F42u)
+        return nak(h, ErrorCode::bad_magic, field_index_of<&EnterBootloader::magic>());
       if (programs_.running()) return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
       bootloader_requested_ = true;
       ack(h);
@@ -145,22 +146,12 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       const int bad = m.first_out_of_range();
       if (bad >= 0) return nak(h, ErrorCode::out_of_range, static_cast<std::uint8_t>(bad));
       if (m.control_rate_Hz != 20000 && m.control_rate_Hz != 40000)
-        return nak(h, ErrorCode::out_of_range, 7);
-      if (m.travel_min_counts >= m.travel_max_counts) return nak(h, ErrorCode::out_of_range, 4);
+        return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::control_rate_Hz>());
+      if (m.travel_min_counts >= m.travel_max_counts)
+        return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::travel_min_counts>());
       if (programs_.running() || streamer_.running())
         return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
-      Params p;
-      p.current_clamp_A = m.current_clamp_A;
-      p.i2t_continuous_A = m.i2t_continuous_A;
-      p.i2t_limit_A2s = m.i2t_limit_A2s;
-      p.i2t_tau_s = m.i2t_tau_s;
-      p.travel_min_counts = m.travel_min_counts;
-      p.travel_max_counts = m.travel_max_counts;
-      p.heartbeat_timeout_ms = m.heartbeat_timeout_ms;
-      p.control_rate_Hz = m.control_rate_Hz;
-      p.supply_V = m.supply_V;
-      p.contact_output = m.contact_output;
-      p.contact_output_hold_ms = m.contact_output_hold_ms;
+      const Params p = fields_as<Params>(m);
       const std::uint32_t old_rate = params_.control_rate_Hz;
       apply_params(p);
       if (p.control_rate_Hz != old_rate) {
@@ -178,19 +169,8 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (std::is_same_v<M, GetCalibration>) {
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, SetCalibration>) {
-      Calibration as_reply;
-      as_reply.layout_version = m.layout_version;
-      as_reply.kf_position_counts = m.kf_position_counts;
-      as_reply.kf_N_per_A = m.kf_N_per_A;
-      as_reply.current_offset_A = m.current_offset_A;
-      as_reply.current_gain = m.current_gain;
-      as_reply.pressure_offset_Pa = m.pressure_offset_Pa;
-      as_reply.pressure_gain = m.pressure_gain;
-      as_reply.spring_k_N_per_m = m.spring_k_N_per_m;
-      as_reply.stroke_origin_counts = m.stroke_origin_counts;
-      as_reply.stroke_origin_valid = m.stroke_origin_valid;
       CalibrationData c;
-      const int bad = from_proto(as_reply, c);
+      const int bad = from_proto(fields_as<Calibration>(m), c);
       if (bad >= 0) return nak(h, ErrorCode::calibration_invalid, static_cast<std::uint8_t>(bad));
       apply_calibration(c);
       reply(h, to_proto(calibration_));

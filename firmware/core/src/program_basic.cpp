@@ -55,7 +55,7 @@ void ContactWatchProgram::step(std::uint64_t k, std::int32_t encoder_count,
 proto::ErrorCode SineProgram::validate(const proto::LoadSine& m, std::uint32_t,
                                        std::uint8_t& field_index) {
   if (!detail::peak_within_limit(m.offset_A, m.amplitude_A))
-    return detail::out_of_range(1, field_index);  // amplitude_A
+    return detail::out_of_range<&proto::LoadSine::amplitude_A>(field_index);
   return proto::ErrorCode::ok;
 }
 

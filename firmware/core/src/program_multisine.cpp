@@ -24,16 +24,17 @@ proto::ErrorCode MultisineProgram::validate(const proto::LoadMultisine& m, std::
   if (l.count == 0 || l.count > kMaxMultisineLines ||
       static_cast<std::uint64_t>(l.highest()) * l.ticks_per_point * kMultisineSubRatePerMaxLine >
           l.period_ticks)
-    return detail::out_of_range(3, field_index);
+    return detail::out_of_range<&proto::LoadMultisine::line_last>(field_index);
+  // worst case: the K lines peak together at K * line_amplitude_A
   if (!detail::peak_within_limit(m.offset_A, static_cast<double>(m.line_amplitude_A) * l.count))
-    return detail::out_of_range(5, field_index);  // line_amplitude_A: worst case K * amplitude
+    return detail::out_of_range<&proto::LoadMultisine::line_amplitude_A>(field_index);
   switch (m.phase_mode) {
     case proto::PhaseMode::random_seeded:
     case proto::PhaseMode::schroeder:
     case proto::PhaseMode::zero:
       break;
     default:
-      return detail::out_of_range(6, field_index);  // phase_mode this device does not know
+      return detail::out_of_range<&proto::LoadMultisine::phase_mode>(field_index);  // unknown
   }
   return proto::ErrorCode::ok;
 }

@@ -8,7 +8,7 @@ proto::ErrorCode RampProgram::validate(const proto::LoadRamp& m, std::uint32_t,
   // a step longer than the way from start_A to stop_A never reaches stop_A (start_A == stop_A is
   // a one-level ramp)
   if (m.start_A != m.stop_A && proto::grid_points(m.start_A, m.stop_A, m.step_A) < 2)
-    return detail::out_of_range(2, field_index);  // step_A
+    return detail::out_of_range<&proto::LoadRamp::step_A>(field_index);
   return proto::ErrorCode::ok;
 }
 

@@ -7,10 +7,11 @@ namespace palp::fw {
 proto::ErrorCode SweepProgram::validate(const proto::LoadSweep& m, std::uint32_t,
                                         std::uint8_t& field_index) {
   if (!detail::peak_within_limit(m.offset_A, m.amplitude_A))
-    return detail::out_of_range(1, field_index);  // amplitude_A
-  if (m.stop_Hz < m.start_Hz) return detail::out_of_range(3, field_index);  // stop_Hz
+    return detail::out_of_range<&proto::LoadSweep::amplitude_A>(field_index);
+  if (m.stop_Hz < m.start_Hz) return detail::out_of_range<&proto::LoadSweep::stop_Hz>(field_index);
+  // a step that cannot reach stop_Hz
   if (m.stop_Hz != m.start_Hz && proto::grid_points(m.start_Hz, m.stop_Hz, m.step_Hz) < 2)
-    return detail::out_of_range(4, field_index);  // step_Hz cannot reach stop_Hz
+    return detail::out_of_range<&proto::LoadSweep::step_Hz>(field_index);
   return proto::ErrorCode::ok;
 }
 

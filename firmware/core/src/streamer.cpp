@@ -11,11 +11,11 @@ proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
     return proto::ErrorCode::out_of_range;
   }
   if (c.batch_samples > proto::max_batch_samples(c.channels)) {
-    field_index = 2;  // batch_samples
+    field_index = proto::field_index_of<&proto::StreamConfigure::batch_samples>();
     return proto::ErrorCode::out_of_range;
   }
   if (static_cast<std::uint64_t>(control_rate_Hz) > std::uint64_t{kMaxRate_Hz} * c.decimation) {
-    field_index = 1;  // decimation
+    field_index = proto::field_index_of<&proto::StreamConfigure::decimation>();
     return proto::ErrorCode::stream_too_fast;
   }
   control_rate_Hz_ = control_rate_Hz;

@@ -169,6 +169,26 @@ constexpr bool in_range(const T& value, const L& lo, const H& hi) {
 }
 }  // namespace detail
 
+/// Whether messages A and B carry the same field list: the same names, kinds, types and sizes in
+/// the same order (the catalogue gives SetParams the fields of Params, SetCalibration those of
+/// Calibration).
+template <class A, class B>
+consteval bool same_fields() {
+  constexpr auto same_text = [](const char* x, const char* y) {
+    for (; *x != 0 && *x == *y; ++x) ++y;
+    return *x == *y;
+  };
+  if (A::kFields.size() != B::kFields.size()) return false;
+  for (std::size_t k = 0; k < A::kFields.size(); ++k) {
+    const FieldInfo& a = A::kFields[k];
+    const FieldInfo& b = B::kFields[k];
+    if (!same_text(a.name, b.name) || a.kind != b.kind || !same_text(a.type, b.type) ||
+        a.count != b.count)
+      return false;
+  }
+  return true;
+}
+
 // ---- message structs -------------------------------------------------------------------------
 #define PALP_X_STRUCT(Name, id, dir, since, reply, doc)                                     \
   struct Name {                                                                             \
@@ -197,12 +217,62 @@ constexpr bool in_range(const T& value, const L& lo, const H& hi) {
       [[maybe_unused]] std::size_t i = 0;                                                   \
       PALP_FIELDS_##Name(PALP_X_RANGE) return -1;                                           \
     }                                                                                       \
+    /** Copies every field of a message with the same field list (same_fields; use  */     \
+    /** fields_as). */                                                                      \
+    template <class Other>                                                                  \
+      requires(same_fields<Name, Other>())                                                  \
+    constexpr void assign_fields([[maybe_unused]] const Other& o) {                         \
+      PALP_FIELDS_##Name(PALP_X_ASSIGN)                                                     \
+    }                                                                                       \
     constexpr bool operator==(const Name&) const = default;                                 \
   };
 #define PALP_X_COUNT(...) +1
+#define PALP_X_ASSIGN(kind, type, n, name, since, def, lo, hi, unit, doc) name = o.name;
 PALP_MESSAGES(PALP_X_STRUCT)
+#undef PALP_X_ASSIGN
 #undef PALP_X_COUNT
 #undef PALP_X_STRUCT
+
+// ---- fields named at compile time ------------------------------------------------------------
+namespace detail {
+template <class P>
+struct member_of;
+template <class C, class T>
+struct member_of<T C::*> {
+  using type = C;
+};
+void not_a_catalogue_field();  // never defined: reaching it in field_index_of does not compile
+}  // namespace detail
+
+/// The zero-based catalogue index of a message field named by its member pointer: the number
+/// Nak.field_index carries (SPEC.md §5.5, the `#` of §10.1), e.g.
+/// `field_index_of<&LoadSweep::stop_Hz>()` is 3. Found at compile time by walking the message's
+/// visit() for the member's address, so it follows the catalogue when fields are renamed,
+/// reordered or inserted: no field number is ever written by hand.
+template <auto Member>
+consteval u8 field_index_of() {
+  using M = typename detail::member_of<decltype(Member)>::type;
+  const M m{};
+  const void* const target = &(m.*Member);
+  int found = -1;
+  int k = 0;
+  m.visit([&](const FieldInfo&, const auto& field) {
+    if (static_cast<const void*>(&field) == target) found = k;
+    ++k;
+  });
+  if (found < 0) detail::not_a_catalogue_field();
+  return static_cast<u8>(found);
+}
+
+/// `from` as message type To with the same field list, every field copied
+/// (`fields_as<Params>(set_params)`); does not compile when the field lists differ.
+template <class To, class From>
+  requires(same_fields<From, To>())
+constexpr To fields_as(const From& from) {
+  To to;
+  to.assign_fields(from);
+  return to;
+}
 
 // ---- the catalogue as data -------------------------------------------------------------------
 struct MessageInfo {

@@ -26,6 +26,12 @@ inline proto::ErrorCode out_of_range(std::uint8_t field, std::uint8_t& field_ind
   field_index = field;
   return proto::ErrorCode::out_of_range;
 }
+/// Refusal of the field `Field` names (`out_of_range<&proto::LoadSweep::stop_Hz>(field_index)`):
+/// its index comes from the catalogue (proto::field_index_of).
+template <auto Field>
+proto::ErrorCode out_of_range(std::uint8_t& field_index) {
+  return out_of_range(proto::field_index_of<Field>(), field_index);
+}
 /// Whether |offset_A| + peak_A stays within proto::kProgramMaxCurrent_A.
 inline bool peak_within_limit(float offset_A, double peak_A) {
   const double offset = offset_A < 0 ? -static_cast<double>(offset_A) : offset_A;

@@ -96,7 +96,7 @@ void for_each_golden(F&& f) {
   Nak nak;
   nak.request_id = static_cast<u8>(MessageId::SetParams);
   nak.error = ErrorCode::out_of_range;
-  nak.field_index = 6;  // heartbeat_timeout_ms, sent as 20 ms (the range is 50 ms to 10 s)
+  nak.field_index = field_index_of<&SetParams::heartbeat_timeout_ms>();  // 20 ms: below 50 ms
   f("Nak.heartbeat_too_short", nak, 11, kFlagResponse);
 
   f("SampleBatch.three_samples", example_batch(4096, 1'234'567'890'123ull, 3), 12, 0);
