@@ -14,7 +14,40 @@ enum class NoiseStream : std::uint32_t {
   pressure_base = 16,  // + channel number 1..6
 };
 
-/// Standard normal deviate N(0, 1) for (seed, stream, tick): splitmix64 hashing and Box-Muller.
-double gaussian(std::uint64_t seed, std::uint32_t stream, std::uint64_t tick);
+/// The hash of (seed, stream) that every sample of that stream starts from: a plant keeps its
+/// streams' keys instead of hashing seed and stream again every tick.
+std::uint64_t noise_key(std::uint64_t seed, std::uint32_t stream);
+
+/// Standard normal deviate N(0, 1) of the stream with this key at this tick (splitmix64 hashing
+/// and Box-Muller). gaussian_at(noise_key(seed, stream), tick) == gaussian(seed, stream, tick).
+double gaussian_at(std::uint64_t key, std::uint64_t tick);
+
+/// gaussian_at(key, tick) known to within +-error, for much less work: the Box-Muller radius is
+/// the very one gaussian_at computes, the cosine a polynomial instead of the library's cos (whose
+/// range reduction costs as much as the rest). error bounds |value - gaussian_at(key, tick)| with a
+/// margin of over 100 over the worst case (README.md "Noise").
+struct GaussianBracket {
+  double value;
+  double error;
+};
+GaussianBracket gaussian_bracket(std::uint64_t key, std::uint64_t tick);
+
+/// What a quantised reading of a noisy signal is: code_of(g) for g = gaussian_at(key, tick),
+/// where code_of is non-decreasing in g (a sensor's transfer: adding sigma g, sigma >= 0, then
+/// scaling by positive numbers and rounding, each step monotonic in floating point too). The
+/// bracket's ends usually give the same code, which is then code_of's exact answer; only when a
+/// code boundary falls inside the bracket is gaussian_at itself computed.
+template <class CodeOf>
+auto quantised_noise(std::uint64_t key, std::uint64_t tick, CodeOf&& code_of) {
+  const GaussianBracket b = gaussian_bracket(key, tick);
+  const auto lo = code_of(b.value - b.error);
+  if (lo == code_of(b.value + b.error)) return lo;
+  return code_of(gaussian_at(key, tick));
+}
+
+/// Standard normal deviate N(0, 1) for (seed, stream, tick).
+inline double gaussian(std::uint64_t seed, std::uint32_t stream, std::uint64_t tick) {
+  return gaussian_at(noise_key(seed, stream), tick);
+}
 
 }  // namespace palp::plant
