@@ -274,20 +274,32 @@ std::array<std::uint16_t, kPressureChannels> Plant::pressure_adcs() const {
     p = phantom_->channel_pressures_Pa(params_, contact_.force_N);
   }
   std::array<std::uint16_t, kPressureChannels> codes{};
+  if (!(config_.sensors.pressure_noise_Pa > 0.0)) {
+    for (std::size_t k = 0; k < kPressureChannels; ++k) codes[k] = pressure_code_at(p[k], 0.0);
+    return codes;
+  }
+  // the six channels' noise first, then their codes: independent work the CPU overlaps
+  std::array<GaussianBracket, kPressureChannels> g;
   for (std::size_t k = 0; k < kPressureChannels; ++k)
-    codes[k] = pressure_code(static_cast<int>(k + 1), p[k]);
+    g[k] = gaussian_bracket(pressure_noise_keys_[k], tick_);
+  for (std::size_t k = 0; k < kPressureChannels; ++k) {
+    codes[k] = quantised_noise(g[k], pressure_noise_keys_[k], tick_,
+                               [&](double x) { return pressure_code_at(p[k], x); });
+  }
   return codes;
 }
 
 std::uint16_t Plant::pressure_code(int channel, double pressure_Pa) const {
-  const SensorConfig& s = config_.sensors;
-  auto code_of = [&](double g) {
-    return pressure_code_from_Pa(pressure_Pa + s.pressure_noise_Pa * g, s.pressure_full_scale_Pa,
-                                 s.pressure_adc_bits);
-  };
-  if (!(s.pressure_noise_Pa > 0.0)) return code_of(0.0);
+  auto code_of = [&](double g) { return pressure_code_at(pressure_Pa, g); };
+  if (!(config_.sensors.pressure_noise_Pa > 0.0)) return code_of(0.0);
   return quantised_noise(pressure_noise_keys_[static_cast<std::size_t>(channel - 1)], tick_,
                          code_of);
+}
+
+std::uint16_t Plant::pressure_code_at(double pressure_Pa, double g) const {
+  const SensorConfig& s = config_.sensors;
+  return pressure_code_from_Pa(pressure_Pa + s.pressure_noise_Pa * g, s.pressure_full_scale_Pa,
+                               s.pressure_adc_bits);
 }
 
 }  // namespace palp::plant

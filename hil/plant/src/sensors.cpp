@@ -10,9 +10,16 @@ namespace {
 // 2^bits, exactly (bits <= 16): scaling by it is exact, as std::ldexp is, without the call.
 double two_to(int bits) { return static_cast<double>(1u << bits); }
 
+// std::clamp(std::nearbyint(scaled), 0, top) without the library call: below 0 (or -0.5) the
+// clamp gives 0 either way; for 0 <= x < 2^52 adding and taking away 2^52 rounds x to an integer
+// in the current rounding mode, exactly as nearbyint does; at 2^52 and above (and for +inf) the
+// clamp gives top either way. NaN stays NaN, as before.
 std::uint16_t to_code(double scaled, int bits) {
+  constexpr double kTwo52 = 4503599627370496.0;
   const double top = two_to(bits) - 1.0;
-  const double c = std::clamp(std::nearbyint(scaled), 0.0, top);
+  double r = scaled;
+  if (scaled >= 0.0 && scaled < kTwo52) r = (scaled + kTwo52) - kTwo52;
+  const double c = std::clamp(r, 0.0, top);
   return static_cast<std::uint16_t>(c);
 }
 

@@ -32,17 +32,24 @@ struct GaussianBracket {
 };
 GaussianBracket gaussian_bracket(std::uint64_t key, std::uint64_t tick);
 
-/// What a quantised reading of a noisy signal is: code_of(g) for g = gaussian_at(key, tick),
+/// What a quantised reading of a noisy signal is: code_of(g) for g = gaussian_at(key, tick)
+/// (bracket = gaussian_bracket(key, tick)),
 /// where code_of is non-decreasing in g (a sensor's transfer: adding sigma g, sigma >= 0, then
 /// scaling by positive numbers and rounding, each step monotonic in floating point too). The
 /// bracket's ends usually give the same code, which is then code_of's exact answer; only when a
 /// code boundary falls inside the bracket is gaussian_at itself computed.
 template <class CodeOf>
-auto quantised_noise(std::uint64_t key, std::uint64_t tick, CodeOf&& code_of) {
-  const GaussianBracket b = gaussian_bracket(key, tick);
-  const auto lo = code_of(b.value - b.error);
-  if (lo == code_of(b.value + b.error)) return lo;
+auto quantised_noise(const GaussianBracket& bracket, std::uint64_t key, std::uint64_t tick,
+                     CodeOf&& code_of) {
+  const auto lo = code_of(bracket.value - bracket.error);
+  if (lo == code_of(bracket.value + bracket.error)) return lo;
   return code_of(gaussian_at(key, tick));
+}
+/// The same with the bracket taken here (a caller of many streams takes theirs first, so that
+/// the CPU overlaps their independent work).
+template <class CodeOf>
+auto quantised_noise(std::uint64_t key, std::uint64_t tick, CodeOf&& code_of) {
+  return quantised_noise(gaussian_bracket(key, tick), key, tick, code_of);
 }
 
 /// Standard normal deviate N(0, 1) for (seed, stream, tick).

@@ -104,6 +104,7 @@ class Plant {
   double depth_now() const;
   void update_contact(double dt_s, double mount_rate_m_per_s);
   std::uint16_t pressure_code(int channel, double pressure_Pa) const;  // + noise, quantised
+  std::uint16_t pressure_code_at(double pressure_Pa, double g) const;  // with noise sigma g
 
   PlantConfig config_;
   ForceConstantTable kf_;
