@@ -5,8 +5,8 @@
 // Two FNV-1a fingerprints: of every device byte the host would receive (recorded with the code
 // before the speed work, fd26a07, and unchanged by it), and of the plant's true state (position,
 // speed, current, contact force, as IEEE bits) after every millisecond. The state moved once, by
-// roundoff: the Sneddon law's atanh is taken from log for u >= 0.1 (hil/plant/README.md
-// "Speed"), a few 1e-16 relative, which changed no device byte.
+// roundoff: the Sneddon law's atanh is taken from log for u >= 0.1 (hil/plant/README.md,
+// "Speed and sameness"), a few 1e-16 relative, which changed no device byte.
 //
 // When a change is meant to alter the physics or the firmware's output, these hashes change
 // with it: record the new ones and say in the commit why the results moved. They hold for
