@@ -30,9 +30,9 @@ struct GaussianBracket {
 GaussianBracket gaussian_bracket(std::uint64_t key, std::uint64_t tick);
 
 /// What a quantised reading of a noisy signal is: code_of(g) for g = gaussian_at(key, tick)
-/// (bracket = gaussian_bracket(key, tick)),
-/// where code_of is non-decreasing in g (a sensor's transfer: adding sigma g, sigma >= 0, then
-/// scaling by positive numbers and rounding, each step monotonic in floating point too). The
+/// (bracket = gaussian_bracket(key, tick)), where code_of is non-decreasing in g (a sensor's
+/// transfer: adding sigma g, sigma >= 0, then scaling by positive numbers and rounding, each
+/// step monotonic in floating point too). The
 /// bracket's ends usually give the same code, which is then code_of's exact answer; only when a
 /// code boundary falls inside the bracket is gaussian_at itself computed.
 template <class CodeOf>
