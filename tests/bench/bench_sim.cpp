@@ -1,9 +1,15 @@
 // palp-sim's speed on one core: the firmware core and the physical model together, per control
-// tick, while a program runs and all channels stream at 10 kHz (the host side only drains bytes).
-// Prints ns per tick and the real-time factor (simulated seconds per wall second) at 20 and 40 kHz.
+// tick, in the scenario issue 16 sets its target on: a 400-line multisine (0.25..100 Hz, 0.5 mA
+// a line about a 1.0 A bias, as the contact identification runs it) with the probe in contact,
+// and the full stream on (all channels at the stream's maximum rate, 10 kHz); the host side only
+// drains the bytes. Phantoms: solid_1d at position 3 (the identification's site, no pressure
+// channels) and pad_2d at row 8, column 8 (all six pressure channels loaded).
+// Prints ns per tick and x_realtime (simulated seconds per wall second) at 20 and 40 kHz; the
+// target is x_realtime >= 200 at 20 kHz and >= 100 at 40 kHz.
 #include <benchmark/benchmark.h>
 
 #include <memory>
+#include <string>
 
 #include "palp/sim/plant_link.hpp"
 #include "palp/sim/simulation.hpp"
@@ -19,60 +25,70 @@ void send(sim::Simulation& s, const M& m, proto::u16 seq, std::uint64_t wall_us 
   s.host_bytes(w.data(), w.size(), wall_us);
 }
 
+struct Site {
+  const char* phantom;
+  double x_m, y_m;
+};
+constexpr Site kSites[] = {{"solid_1d", 0.027, 0.0}, {"pad_2d", 0.080, 0.075}};
+
 void BM_SimulationTick(benchmark::State& state) {
   const auto rate_Hz = static_cast<std::uint32_t>(state.range(0));
-  const bool multisine = state.range(1) != 0;
+  const Site& site = kSites[state.range(1)];
   fw::DeviceIdentity id;
   id.board = "palp-sim";
-  sim::Simulation s(id, std::make_unique<sim::ModelPlant>("solid_1d", 1));
+  sim::Simulation s(id, std::make_unique<sim::ModelPlant>(site.phantom, 1));
   auto& plant = static_cast<sim::ModelPlant&>(s.plant()).model();
-  plant.set_mount(0.0, 0.0, 0.0);
+  // the coil floats 25 mm out at 0.5 A: the tip meets the surface there, and the bias presses in
+  plant.set_mount(site.x_m, site.y_m, plant.phantom()->surface_z_m(site.x_m, site.y_m) - 0.025);
   proto::SetParams p;
   p.control_rate_Hz = rate_Hz;
   send(s, p, 1);
   send(s, proto::StreamConfigure{proto::kAllChannels, static_cast<proto::u16>(rate_Hz / 10000), 40}, 2);
   send(s, proto::StreamStart{}, 3);
-  if (multisine) {
-    proto::LoadMultisine m;
-    m.line_first = 1;
-    m.line_last = 400;
-    m.line_step = 1;
-    m.fundamental_Hz = 0.25f;
-    m.line_amplitude_A = 0.0005f;
-    m.periods = 0;
-    send(s, m, 4);
-  } else {
-    send(s, proto::LoadHold{0.6f, 0.0f}, 4);
-  }
+  proto::LoadMultisine m;
+  m.line_first = 1;
+  m.line_last = 400;
+  m.line_step = 1;
+  m.fundamental_Hz = 0.25f;
+  m.line_amplitude_A = 0.0005f;
+  m.offset_A = 1.0f;
+  m.periods = 0;
+  send(s, m, 4);
   send(s, proto::ProgramStart{}, 5);
-  std::uint64_t ticks = 0;
   std::uint64_t wall = 0;
-  for (auto _ : state) {
-    // 1 ms of virtual time per iteration, with a heartbeat so the watchdog stays fed
-    ticks += s.run(rate_Hz / 1000, wall);
+  // 1 ms of virtual time per step, with a heartbeat so the watchdog stays fed
+  auto run_ms = [&] {
+    const std::uint32_t ran = s.run(rate_Hz / 1000, wall);
     wall += 1000;
     send(s, proto::Heartbeat{}, 6, wall);
     benchmark::DoNotOptimize(s.take_device_bytes());
-  }
+    return ran;
+  };
+  for (int k = 0; k < 500; ++k) run_ms();  // settle into contact
+  std::uint64_t ticks = 0;
+  for (auto _ : state) ticks += run_ms();
   state.counters["ns_per_tick"] = benchmark::Counter(
       static_cast<double>(ticks), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["realtime_factor"] =
+  state.counters["x_realtime"] =
       benchmark::Counter(static_cast<double>(ticks) / rate_Hz, benchmark::Counter::kIsRate);
+  static std::string why;
   if (s.controller().faulted()) {
-    static std::string why;
     why = "the controller faulted: reason " +
           std::to_string(static_cast<int>(s.controller().fault()));
+    state.SkipWithError(why.c_str());
+  } else if (!(plant.contact_force_N() > 0.0)) {
+    why = std::string("the probe is not in contact on ") + site.phantom;
     state.SkipWithError(why.c_str());
   }
 }
 
 BENCHMARK(BM_SimulationTick)
-    ->ArgNames({"rate_Hz", "multisine"})
+    ->ArgNames({"rate_Hz", "pad_2d"})
     ->Args({20000, 0})
     ->Args({20000, 1})
     ->Args({40000, 0})
     ->Args({40000, 1})
-    ->Unit(benchmark::kMillisecond);
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

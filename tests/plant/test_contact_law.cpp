@@ -38,6 +38,27 @@ TEST(Sneddon, ContactRadiusAtPaperOperatingDepthsStaysBelowR) {
   EXPECT_LT(sneddon_contact_radius(kR, 20e-3), kR);
 }
 
+// The law's definition with the library's atanh throughout, solved by bisection: the contact
+// radius u R with u atanh(u) = delta / R and F = E* R^2 ((1 + u^2) atanh(u) - u). The plant takes
+// atanh from log above u = 0.1 for speed (contact_laws.cpp): it stays within roundoff of this.
+TEST(Sneddon, AgreesWithTheLibraryAtanhFormToRoundoff) {
+  for (double d = 1e-7; d < 20e-3; d *= 1.37) {
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (mid * std::atanh(mid) < d / kR ? lo : hi) = mid;
+    }
+    const double u = 0.5 * (lo + hi);
+    const double force = 1e6 * kR * kR * ((1.0 + u * u) * std::atanh(u) - u);
+    EXPECT_NEAR(sneddon_contact_radius(kR, d) / kR, u, 1e-13 * u) << "delta = " << d;
+    // 1e-11: Newton's stopping test (a step below 1e-13 u) grows by 1 / (1 - u) in the force
+    // toward u = 1 (about 1e-12 at delta / R = 6), with the library's atanh as with the plant's
+    if (u >= 1e-2) {  // below, both the plant and this cancel: the plant takes a series there
+      EXPECT_NEAR(sneddon_sphere(1e6, kR, d).force_N, force, 1e-11 * force) << "delta = " << d;
+    }
+  }
+}
+
 TEST(Sneddon, TangentIsTwoEStarAAndMatchesTheDerivative) {
   for (double d : {1e-6, 1e-4, 1e-3, 3e-3, 6e-3}) {
     const ElasticPoint p = sneddon_sphere(2e5, kR, d);

@@ -2,7 +2,9 @@
 // same seed gives the same run, whatever else is read.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "palp/plant/noise.hpp"
@@ -47,6 +49,17 @@ TEST(CurrentSense, CodeIsMidScaleAtZeroAndRoundTrips) {
   EXPECT_NEAR(current_A_from_code(current_code_from_A(1.0)), 1.0, 5.0 / 2048);
 }
 
+TEST(CurrentSense, HalfwayCodesRoundToEvenAsNearbyintDoes) {
+  // 2048 + i / 5 A * 2048 lands exactly halfway for i = 5 / 4096 A and 15 / 4096 A
+  EXPECT_EQ(current_code_from_A(5.0 / 4096), 2048);
+  EXPECT_EQ(current_code_from_A(15.0 / 4096), 2050);
+  EXPECT_EQ(current_code_from_A(-5.0 / 4096), 2048);
+  EXPECT_EQ(current_code_from_A(-15.0 / 4096), 2046);
+  EXPECT_EQ(current_code_from_A(1e300), 4095);  // far beyond 2^52: clamped
+  EXPECT_EQ(current_code_from_A(-1e300), 0);
+  EXPECT_EQ(current_code_from_A(std::numeric_limits<double>::infinity()), 4095);
+}
+
 TEST(CurrentSense, NoiseHasTheConfiguredSpreadAroundTheTrueCurrent) {
   Plant p{PlantConfig{}};  // parked, 0 A, nothing moves
   double sum = 0.0, sum2 = 0.0;
@@ -74,6 +87,56 @@ TEST(Noise, GaussianIsStandardNormal) {
   }
   EXPECT_NEAR(sum / n, 0.0, 0.01);
   EXPECT_NEAR(sum2 / n, 1.0, 0.01);
+}
+
+TEST(Noise, TheBracketHoldsTheExactDeviateAndIsNarrow) {
+  const std::uint64_t key = noise_key(42, 3);
+  double widest = 0.0;
+  for (std::uint64_t k = 0; k < 2'000'000; ++k) {
+    const GaussianBracket b = gaussian_bracket(key, k);
+    const double exact = gaussian_at(key, k);
+    ASSERT_LE(b.lo, exact) << "tick " << k;
+    ASSERT_GE(b.hi, exact) << "tick " << k;
+    widest = std::max(widest, b.hi - b.lo);
+  }
+  // narrow: a pressure code is 0.76 sigma wide, so a code boundary falls inside rarely
+  EXPECT_LT(widest, 2e-4);
+  EXPECT_EQ(gaussian_at(key, 17), gaussian(42, 3, 17));
+}
+
+// The readings the plant takes through the bracket are those of the exact deviate: every code of
+// a pad run in contact against the transfer functions applied to gaussian() itself.
+TEST(Noise, QuantisedReadingsEqualTheTransferOfTheExactDeviate) {
+  PlantConfig cfg;
+  cfg.noise_seed = 11;
+  cfg.sensors.encoder_noise_m = 0.3e-6;  // the encoder's optional jitter too
+  test::Rig rig{cfg, load_shipped_phantom("pad_2d")};
+  const ProbeSite site = rig.plant.phantom()->grid_point(8, 8);
+  test::touch_at_float(rig, site.x_m, site.y_m);
+  const SensorConfig& s = rig.plant.config().sensors;
+  int pressure_off_centre = 0;
+  for (int k = 0; k < 20000; ++k) {
+    rig.tick(1.0 + 0.5 * std::sin(k * 1e-3));
+    const std::uint64_t t = rig.plant.tick();
+    const auto codes = rig.plant.pressure_adcs();
+    for (int ch = 1; ch <= 6; ++ch) {
+      const double p = rig.plant.channel_pressure_Pa(ch) +
+                       s.pressure_noise_Pa * gaussian(11, 16 + static_cast<std::uint32_t>(ch), t);
+      const std::uint16_t want = pressure_code_from_Pa(p, s.pressure_full_scale_Pa, s.pressure_adc_bits);
+      ASSERT_EQ(codes[static_cast<std::size_t>(ch - 1)], want) << "tick " << t << " channel " << ch;
+      ASSERT_EQ(rig.plant.pressure_adc(ch), want) << "tick " << t << " channel " << ch;
+      pressure_off_centre += want != 2048;
+    }
+    const double i = rig.plant.coil_current_A() + s.current_sense_noise_A * gaussian(11, 1, t);
+    ASSERT_EQ(rig.plant.current_sense_code(),
+              current_code_from_A(i, s.current_sense_full_scale_A, s.current_sense_bits))
+        << "tick " << t;
+    const double pos = rig.plant.position_m() + s.encoder_noise_m * gaussian(11, 2, t);
+    ASSERT_EQ(rig.plant.encoder_count(),
+              static_cast<std::int32_t>(std::floor(pos / s.encoder_resolution_m + 0.5)))
+        << "tick " << t;
+  }
+  EXPECT_GT(pressure_off_centre, 20000 * 6 / 2);  // the channels really carried pressure
 }
 
 std::vector<int> run_pad(std::uint64_t seed, bool read_extra) {

@@ -211,9 +211,7 @@ void Controller::service() {
 }
 
 std::size_t Controller::transmit(std::uint8_t* out, std::size_t capacity) {
-  std::size_t n = 0;
-  while (n < capacity && tx_.pop(out[n])) ++n;
-  return n;
+  return tx_.pop_n(out, capacity);
 }
 
 proto::Health Controller::health() const {

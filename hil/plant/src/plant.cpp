@@ -55,6 +55,14 @@ Plant::Plant(PlantConfig config, std::shared_ptr<const Phantom> phantom)
       kf_.at(m.float_position_m) * m.float_current_A + m.moving_mass_kg * m.gravity_m_per_s2;
   spring_neutral_m_ = m.float_position_m - hold_N / m.spring_rate_N_per_m;
 
+  const std::uint64_t seed = config_.noise_seed;
+  current_noise_key_ = noise_key(seed, static_cast<std::uint32_t>(NoiseStream::current_sense));
+  encoder_noise_key_ = noise_key(seed, static_cast<std::uint32_t>(NoiseStream::encoder));
+  for (std::size_t k = 0; k < kPressureChannels; ++k) {
+    pressure_noise_keys_[k] = noise_key(
+        seed, static_cast<std::uint32_t>(NoiseStream::pressure_base) + static_cast<std::uint32_t>(k + 1));
+  }
+
   s_m_ = m.stroke_min_m;  // parked on the rear stop, 0 A
   set_mount(0.0, 0.0, kParkedMountZ_m);
 }
@@ -230,24 +238,22 @@ double Plant::current_sense_A() const {
 
 std::uint16_t Plant::current_sense_code() const {
   const SensorConfig& s = config_.sensors;
-  double i = current_A_;
-  if (s.current_sense_noise_A > 0.0) {
-    i +=
-        s.current_sense_noise_A *
-        gaussian(config_.noise_seed, static_cast<std::uint32_t>(NoiseStream::current_sense), tick_);
-  }
-  return current_code_from_A(i, s.current_sense_full_scale_A, s.current_sense_bits);
+  auto code_of = [&](double g) {
+    return current_code_from_A(current_A_ + s.current_sense_noise_A * g,
+                               s.current_sense_full_scale_A, s.current_sense_bits);
+  };
+  if (!(s.current_sense_noise_A > 0.0)) return code_of(0.0);
+  return quantised_noise(current_noise_key_, tick_, code_of);
 }
 
 std::int32_t Plant::encoder_count() const {
   const SensorConfig& s = config_.sensors;
-  double pos = s_m_;
-  if (s.encoder_noise_m > 0.0) {
-    pos += s.encoder_noise_m *
-           gaussian(config_.noise_seed, static_cast<std::uint32_t>(NoiseStream::encoder), tick_);
-  }
-  const double counts = std::floor(pos / s.encoder_resolution_m + 0.5);
-  return static_cast<std::int32_t>(std::clamp(counts, -2147483648.0, 2147483647.0));
+  auto count_of = [&](double g) {
+    const double counts = std::floor((s_m_ + s.encoder_noise_m * g) / s.encoder_resolution_m + 0.5);
+    return static_cast<std::int32_t>(std::clamp(counts, -2147483648.0, 2147483647.0));
+  };
+  if (!(s.encoder_noise_m > 0.0)) return count_of(0.0);
+  return quantised_noise(encoder_noise_key_, tick_, count_of);
 }
 
 double Plant::channel_pressure_Pa(int channel) const {
@@ -259,14 +265,41 @@ double Plant::channel_pressure_Pa(int channel) const {
 }
 
 std::uint16_t Plant::pressure_adc(int channel) const {
-  const SensorConfig& s = config_.sensors;
-  double p = channel_pressure_Pa(channel);
-  if (s.pressure_noise_Pa > 0.0) {
-    const auto stream = static_cast<std::uint32_t>(NoiseStream::pressure_base) +
-                        static_cast<std::uint32_t>(channel);
-    p += s.pressure_noise_Pa * gaussian(config_.noise_seed, stream, tick_);
+  return pressure_code(channel, channel_pressure_Pa(channel));
+}
+
+std::array<std::uint16_t, kPressureChannels> Plant::pressure_adcs() const {
+  std::array<double, kPressureChannels> p{};
+  if (phantom_ && phantom_->pressure_channel_count() != 0) {
+    p = phantom_->channel_pressures_Pa(params_, contact_.force_N);
   }
-  return pressure_code_from_Pa(p, s.pressure_full_scale_Pa, s.pressure_adc_bits);
+  std::array<std::uint16_t, kPressureChannels> codes{};
+  if (!(config_.sensors.pressure_noise_Pa > 0.0)) {
+    for (std::size_t k = 0; k < kPressureChannels; ++k) codes[k] = pressure_code_at(p[k], 0.0);
+    return codes;
+  }
+  // the six channels' noise first, then their codes: independent work the CPU overlaps
+  std::array<GaussianBracket, kPressureChannels> g;
+  for (std::size_t k = 0; k < kPressureChannels; ++k)
+    g[k] = gaussian_bracket(pressure_noise_keys_[k], tick_);
+  for (std::size_t k = 0; k < kPressureChannels; ++k) {
+    codes[k] = quantised_noise(g[k], pressure_noise_keys_[k], tick_,
+                               [&](double x) { return pressure_code_at(p[k], x); });
+  }
+  return codes;
+}
+
+std::uint16_t Plant::pressure_code(int channel, double pressure_Pa) const {
+  auto code_of = [&](double g) { return pressure_code_at(pressure_Pa, g); };
+  if (!(config_.sensors.pressure_noise_Pa > 0.0)) return code_of(0.0);
+  return quantised_noise(pressure_noise_keys_[static_cast<std::size_t>(channel - 1)], tick_,
+                         code_of);
+}
+
+std::uint16_t Plant::pressure_code_at(double pressure_Pa, double g) const {
+  const SensorConfig& s = config_.sensors;
+  return pressure_code_from_Pa(pressure_Pa + s.pressure_noise_Pa * g, s.pressure_full_scale_Pa,
+                               s.pressure_adc_bits);
 }
 
 }  // namespace palp::plant

@@ -13,10 +13,6 @@ ModelPlant::ModelPlant(const std::string& phantom, std::uint64_t seed)
       plant_(config_for(seed),
              phantom == "none" ? nullptr : plant::load_shipped_phantom(phantom)) {}
 
-std::array<std::uint16_t, 6> ModelPlant::pressure_codes() {
-  std::array<std::uint16_t, 6> codes{};
-  for (int ch = 1; ch <= 6; ++ch) codes[static_cast<std::size_t>(ch - 1)] = plant_.pressure_adc(ch);
-  return codes;
-}
+std::array<std::uint16_t, 6> ModelPlant::pressure_codes() { return plant_.pressure_adcs(); }
 
 }  // namespace palp::sim

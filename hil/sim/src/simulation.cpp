@@ -1,6 +1,7 @@
 #include "palp/sim/simulation.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace palp::sim {
 
@@ -84,43 +85,81 @@ void Simulation::tick_once(std::uint64_t wall_us) {
   plant_->step(1.0 / controller_.control_rate_Hz(), out.v_coil_V);
 }
 
-void Simulation::collect_device_output() {
-  std::uint8_t buf[2048];
-  std::size_t n;
-  while ((n = controller_.transmit(buf, sizeof buf)) > 0) {
-    for (std::size_t k = 0; k < n; ++k) {
-      frame_.push_back(buf[k]);
-      if (buf[k] != 0) continue;
-      // one whole frame (ending with its delimiter): fault injection, holds
-      ++counters_.frames_out;
-      bool drop = options_.drop_every != 0 && counters_.frames_out % options_.drop_every == 0;
-      if (!drop && options_.corrupt_every != 0 &&
-          counters_.frames_out % options_.corrupt_every == 0 && frame_.size() > 2) {
-        std::uint8_t& b = frame_[frame_.size() / 2];
-        b = static_cast<std::uint8_t>(b ^ 0x04);
-        if (b == 0) b = 0x04;  // never create a delimiter
-        ++counters_.frames_corrupted;
-      }
-      if (drop) {
-        ++counters_.frames_dropped;
-      } else {
-        // a contact event holds virtual time until the host reacts
-        proto::FrameReader peek;
-        peek.feed(
-            frame_.data(), frame_.size(),
-            [&](const proto::Frame& f) {
-              if (f.header.id == static_cast<std::uint8_t>(proto::MessageId::EventContact)) {
-                hold_.active = true;
-                hold_.since_wall_us = last_wall_us_;
-                ++counters_.holds;
-              }
-            },
-            [](proto::Reject) {});
-        out_.insert(out_.end(), frame_.begin(), frame_.end());
-      }
-      frame_.clear();
+namespace {
+
+// Byte `index` of the frame that the COBS bytes in[0, n) decode to, without decoding the rest;
+// -1 when they end or stop being valid COBS before it (then the whole frame is rejected too).
+int cobs_byte_at(const std::uint8_t* in, std::size_t n, std::size_t index) {
+  std::size_t i = 0, o = 0;
+  while (i < n) {
+    const std::uint8_t code = in[i++];
+    if (code == 0) return -1;
+    const std::size_t run = static_cast<std::size_t>(code) - 1;
+    if (run > n - i) return -1;
+    if (index < o + run) return in[i + (index - o)];
+    i += run;
+    o += run;
+    if (code != 0xFF && i < n) {  // the implied zero after a short block
+      if (index == o) return 0;
+      ++o;
     }
   }
+  return -1;
+}
+
+constexpr std::size_t kIdOffset = 2;  // the message id's place in the header (frame.hpp)
+
+}  // namespace
+
+void Simulation::collect_device_output() {
+  std::uint8_t buf[4096];
+  std::size_t n;
+  while ((n = controller_.transmit(buf, sizeof buf)) > 0) {
+    const std::uint8_t* p = buf;
+    const std::uint8_t* const end = buf + n;
+    while (p < end) {
+      const auto* zero = static_cast<const std::uint8_t*>(std::memchr(p, 0, end - p));
+      const std::uint8_t* stop = zero ? zero + 1 : end;
+      frame_.insert(frame_.end(), p, stop);
+      p = stop;
+      if (zero) frame_done();
+    }
+  }
+}
+
+void Simulation::frame_done() {
+  // one whole frame (ending with its delimiter): fault injection, holds
+  ++counters_.frames_out;
+  const bool drop = options_.drop_every != 0 && counters_.frames_out % options_.drop_every == 0;
+  if (!drop && options_.corrupt_every != 0 &&
+      counters_.frames_out % options_.corrupt_every == 0 && frame_.size() > 2) {
+    std::uint8_t& b = frame_[frame_.size() / 2];
+    b = static_cast<std::uint8_t>(b ^ 0x04);
+    if (b == 0) b = 0x04;  // never create a delimiter
+    ++counters_.frames_corrupted;
+  }
+  if (drop) {
+    ++counters_.frames_dropped;
+  } else {
+    // a contact event holds virtual time until the host reacts; the id alone rules out every
+    // other frame, the full frame checks decide for a contact event's id
+    if (cobs_byte_at(frame_.data(), frame_.size() - 1, kIdOffset) ==
+        static_cast<int>(proto::MessageId::EventContact)) {
+      proto::FrameReader peek;
+      peek.feed(
+          frame_.data(), frame_.size(),
+          [&](const proto::Frame& f) {
+            if (f.header.id == static_cast<std::uint8_t>(proto::MessageId::EventContact)) {
+              hold_.active = true;
+              hold_.since_wall_us = last_wall_us_;
+              ++counters_.holds;
+            }
+          },
+          [](proto::Reject) {});
+    }
+    out_.insert(out_.end(), frame_.begin(), frame_.end());
+  }
+  frame_.clear();
 }
 
 std::vector<std::uint8_t> Simulation::take_device_bytes() {

@@ -179,11 +179,10 @@ inline bool Controller::send(const M& m, std::uint16_t seq, std::uint8_t flags, 
   proto::u8 scratch[proto::kMaxWireFrame];
   const std::size_t n = proto::encode_message(m, seq, flags, scratch, sizeof scratch,
                                               identity_.protocol.major, identity_.protocol.minor);
-  if (n == 0 || tx_.free() < n) {
+  if (n == 0 || !tx_.push_n(scratch, n)) {
     if (count_drop) ++counters_.tx_frames_dropped;
     return false;
   }
-  for (std::size_t k = 0; k < n; ++k) tx_.push(scratch[k]);
   ++counters_.frames_tx;
   return true;
 }

@@ -27,6 +27,26 @@ class Ring {
     --size_;
     return true;
   }
+  /// Pushes n items, all or none (false: fewer than n free).
+  bool push_n(const T* v, std::size_t n) {
+    if (n > N - size_) return false;
+    const std::size_t tail = (head_ + size_) & (N - 1);
+    const std::size_t first = n < N - tail ? n : N - tail;  // up to the end of the storage
+    for (std::size_t k = 0; k < first; ++k) items_[tail + k] = v[k];
+    for (std::size_t k = first; k < n; ++k) items_[k - first] = v[k];
+    size_ += n;
+    return true;
+  }
+  /// Pops up to max items into out, oldest first; returns how many.
+  std::size_t pop_n(T* out, std::size_t max) {
+    const std::size_t n = max < size_ ? max : size_;
+    const std::size_t first = n < N - head_ ? n : N - head_;
+    for (std::size_t k = 0; k < first; ++k) out[k] = items_[head_ + k];
+    for (std::size_t k = first; k < n; ++k) out[k] = items_[k - first];
+    head_ = (head_ + n) & (N - 1);
+    size_ -= n;
+    return n;
+  }
   /// The newest item (size() > 0).
   T& back() { return items_[(head_ + size_ - 1) & (N - 1)]; }
   /// The k-th oldest item (k < size()).

@@ -16,6 +16,7 @@
 // No allocation per step; sensor reads draw counter-based noise keyed by the tick number.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -65,6 +66,9 @@ class Plant {
   /// Pressure ADC code of paper channel 1..6 (code/4096 = 0.5 + 0.4 p / 1245.42 Pa, + noise).
   /// Channels a phantom lacks read 0 Pa. Throws std::out_of_range for other channel numbers.
   std::uint16_t pressure_adc(int channel) const;
+  /// The six pressure ADC codes at once (index 0 = paper channel 1), each equal to
+  /// pressure_adc(k + 1): the simulator's per-tick read, with the phantom's channels evaluated once.
+  std::array<std::uint16_t, kPressureChannels> pressure_adcs() const;
 
   // --- true state (tests, logging) ----------------------------------------------------------
   double position_m() const { return s_m_; }
@@ -99,6 +103,8 @@ class Plant {
   void ensure_touch();
   double depth_now() const;
   void update_contact(double dt_s, double mount_rate_m_per_s);
+  std::uint16_t pressure_code(int channel, double pressure_Pa) const;  // + noise, quantised
+  std::uint16_t pressure_code_at(double pressure_Pa, double g) const;  // with noise sigma g
 
   PlantConfig config_;
   ForceConstantTable kf_;
@@ -126,6 +132,10 @@ class Plant {
   ContactParams params_{};
   ContactModel contact_model_{};
   ContactModel::Output contact_{};
+
+  // noise keys of the sensors' streams (noise.hpp), from config_.noise_seed
+  std::uint64_t current_noise_key_ = 0, encoder_noise_key_ = 0;
+  std::array<std::uint64_t, kPressureChannels> pressure_noise_keys_{};
 
   // per-dt constants
   double cached_dt_ = -1.0, elec_decay_ = 0.0, elec_mean_ = 0.0;

@@ -1,4 +1,5 @@
 // Sensor transfer functions shared by the plant and by anyone who decodes its codes.
+// ADC widths (bits) are 2..16, as PlantConfig requires.
 #pragma once
 
 #include <cstdint>

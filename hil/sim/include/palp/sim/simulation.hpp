@@ -80,6 +80,7 @@ class Simulation {
  private:
   void tick_once(std::uint64_t wall_us);
   void collect_device_output();
+  void frame_done();  // frame_ holds one whole frame
   void deliver(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us);
 
   fw::Controller controller_;

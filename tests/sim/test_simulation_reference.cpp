@@ -1,0 +1,126 @@
+// palp-sim's results pinned bit for bit (issue 16): the speed work on the simulation, the plant
+// and the firmware core must not change what a run produces for a seed. Each scenario is the
+// bench_sim one (tests/bench/bench_sim.cpp): a 400-line multisine about a 1.0 A bias with the
+// probe driven from its rear stop into contact, the full stream on (all channels, 10 kHz).
+// Two FNV-1a fingerprints: of every device byte the host would receive (recorded with the code
+// before the speed work, fd26a07, and unchanged by it), and of the plant's true state (position,
+// speed, current, contact force, as IEEE bits) after every millisecond. The state moved once, by
+// roundoff: the Sneddon law's atanh is taken from log for u >= 0.1 (hil/plant/README.md,
+// "Speed and sameness"), a few 1e-16 relative, which changed no device byte.
+//
+// When a change is meant to alter the physics or the firmware's output, these hashes change
+// with it: record the new ones and say in the commit why the results moved. They hold for
+// x86-64 (SSE2 double arithmetic, no FMA contraction) and this glibc's libm.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "palp/sim/plant_link.hpp"
+#include "palp/sim/simulation.hpp"
+
+namespace palp::sim {
+namespace {
+
+using namespace palp::proto;
+
+struct Fnv1a {
+  std::uint64_t h = 0xCBF29CE484222325ull;
+  void bytes(const std::uint8_t* p, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) h = (h ^ p[k]) * 0x100000001B3ull;
+  }
+  void number(double v) {
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    std::uint8_t b[8];
+    std::memcpy(b, &bits, 8);
+    bytes(b, 8);
+  }
+};
+
+template <class M>
+void send(Simulation& s, const M& m, u16 seq, std::uint64_t wall_us) {
+  std::vector<u8> w(kMaxWireFrame);
+  w.resize(encode_message(m, seq, 0, w.data(), w.size()));
+  s.host_bytes(w.data(), w.size(), wall_us);
+}
+
+struct Fingerprint {
+  std::uint64_t device_hash;  // the bytes the host receives
+  std::uint64_t state_hash;   // the plant's state every millisecond
+  std::uint64_t device_bytes;
+  double contact_force_N;  // at the end: the run really pressed on the phantom
+};
+
+Fingerprint run_scenario(const char* phantom, double x_m, double y_m, std::uint32_t rate_Hz,
+                         std::uint64_t seed, int ms) {
+  fw::DeviceIdentity id;
+  id.board = "palp-sim";
+  Simulation s(id, std::make_unique<ModelPlant>(phantom, seed));
+  auto& plant = static_cast<ModelPlant&>(s.plant()).model();
+  plant.set_mount(x_m, y_m, plant.phantom()->surface_z_m(x_m, y_m) - 0.025);
+  std::uint64_t wall = 0;
+  SetParams p;
+  p.control_rate_Hz = rate_Hz;
+  send(s, p, 1, wall);
+  send(s, StreamConfigure{kAllChannels, static_cast<u16>(rate_Hz / 10000), 40}, 2, wall);
+  send(s, StreamStart{}, 3, wall);
+  LoadMultisine m;
+  m.line_first = 1;
+  m.line_last = 400;
+  m.line_step = 1;
+  m.fundamental_Hz = 0.25f;
+  m.line_amplitude_A = 0.0005f;
+  m.offset_A = 1.0f;
+  m.periods = 0;
+  send(s, m, 4, wall);
+  send(s, ProgramStart{}, 5, wall);
+  Fnv1a device, state;
+  std::uint64_t device_bytes = 0;
+  for (int k = 0; k < ms; ++k) {
+    EXPECT_EQ(s.run(rate_Hz / 1000, wall), rate_Hz / 1000) << "ms " << k;
+    wall += 1000;
+    send(s, Heartbeat{}, 6, wall);
+    const std::vector<u8> bytes = s.take_device_bytes();
+    device.bytes(bytes.data(), bytes.size());
+    device_bytes += bytes.size();
+    state.number(plant.position_m());
+    state.number(plant.velocity_m_per_s());
+    state.number(plant.coil_current_A());
+    state.number(plant.contact_force_N());
+  }
+  EXPECT_FALSE(s.controller().faulted());
+  return {device.h, state.h, device_bytes, plant.contact_force_N()};
+}
+
+// 400 ms: the coil leaves the rear stop, crosses the air, meets the surface (57 ms in) and
+// settles into the multisine about the bias.
+constexpr int kMs = 400;
+
+TEST(SimulationReference, SolidAtPosition3At20kHzMatchesTheRecordedRun) {
+  const Fingerprint r = run_scenario("solid_1d", 0.027, 0.0, 20000, 7, kMs);
+  EXPECT_GT(r.contact_force_N, 0.5);
+  EXPECT_EQ(r.device_bytes, 105728u);
+  EXPECT_EQ(r.device_hash, 15934854551251312045u);
+  EXPECT_EQ(r.state_hash, 3312868999626281709u);
+}
+
+TEST(SimulationReference, SolidAtPosition3At40kHzMatchesTheRecordedRun) {
+  const Fingerprint r = run_scenario("solid_1d", 0.027, 0.0, 40000, 7, kMs);
+  EXPECT_GT(r.contact_force_N, 0.5);
+  EXPECT_EQ(r.device_bytes, 105728u);
+  EXPECT_EQ(r.device_hash, 9462129712036939900u);
+  EXPECT_EQ(r.state_hash, 14645458020958678637u);
+}
+
+TEST(SimulationReference, PadWithPressureChannelsAt20kHzMatchesTheRecordedRun) {
+  const Fingerprint r = run_scenario("pad_2d", 0.080, 0.075, 20000, 7, kMs);
+  EXPECT_GT(r.contact_force_N, 0.5);
+  EXPECT_EQ(r.device_bytes, 105728u);
+  EXPECT_EQ(r.device_hash, 2111249653377817706u);
+  EXPECT_EQ(r.state_hash, 6512681307867192363u);
+}
+
+}  // namespace
+}  // namespace palp::sim
