@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "palp/result.hpp"
 #include "palp/recording.hpp"
 #include "ramp_reps.hpp"
 
@@ -39,14 +40,14 @@ palp::Sidecar describe_setup(palp::Probe& probe, const palp::StreamInfo& stream)
   side.device["uri"] = probe.uri();
   side.device["params"] = to_json(probe.params());
   const auto cal = probe.calibration();
-  side.calibration = to_json(cal);
+  side.calibration = palp::calibration_json(cal);
   if (cal.stroke_origin_valid != 0) {
     side.stroke_origin_z_mm = mm_from_counts(cal.stroke_origin_counts);
   } else {
     side.stroke_origin_z_mm_reason =
         "the device's stroke origin is not homed (palpctl calibrate home)";
   }
-  for (const auto& z : probe.zeroing()) side.zeroing.push_back(to_json(z));
+  for (const auto& z : probe.zeroing()) side.zeroing.push_back(palp::zeroing_json(z));
   side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
                           {"period_s", stream.period_s},
                           {"channels", stream.channels},

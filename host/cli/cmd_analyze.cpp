@@ -77,23 +77,11 @@ an::IndentationParams params_of(const AnalyzeCli& o) {
   return p;
 }
 
+/// The SDK's analysis params (palp::indentation_params_json) with the recording and --kf-table.
 json params_json(const AnalyzeCli& o, const an::IndentationParams& p) {
-  json j = {{"input", o.input},
-            {"kf_N_per_A", p.force_constant_N_per_A},
-            {"ic_A", p.contact_current_A},
-            {"kv_N_per_mm", o.kv_N_per_mm},
-            {"tip_radius_mm", o.tip_radius_mm},
-            {"poisson", p.poisson},
-            {"bias_current_A", p.bias_current_A},
-            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)},
-            {"kf_table", o.kf_table}};
-  if (p.thickness) {
-    j["thickness_mm"] = o.thickness_mm;
-    j["bonding"] = o.unbonded ? "unbonded" : "bonded";
-  } else {
-    j["thickness_mm"] = nullptr;
-    j["thickness_mm_reason"] = "no --thickness-mm: a semi-infinite half-space";
-  }
+  json j = palp::indentation_params_json(p);
+  j["input"] = o.input;
+  j["kf_table"] = o.kf_table;
   return j;
 }
 
@@ -150,139 +138,6 @@ void put(json& j, const std::string& key, const an::Value& v, double scale) {
     j[key + "_reason"] = v.reason;
   }
 }
-void put(json& j, const std::string& key, const std::optional<double>& v, double scale,
-         const std::string& why) {
-  put(j, key, v ? an::Value::of(*v) : an::Value::absent(why), scale);
-}
-
-/// <key>, <key>_se and <key>_sd in one go.
-void put3(json& j, const std::string& key, const an::Value& v, const an::Value& se,
-          const an::Value& sd, double scale) {
-  put(j, key, v, scale);
-  put(j, key + "_se", se, scale);
-  put(j, key + "_sd", sd, scale);
-}
-
-an::Value sd_over(const an::RepetitionSummary& reps,
-                  const std::function<std::optional<double>(const an::IndentationResult&)>& get,
-                  const std::string& what) {
-  std::vector<an::Value> v;
-  for (const auto& r : reps.per_rep) {
-    const auto x = get(r);
-    v.push_back(x ? an::Value::of(*x) : an::Value::absent(what + " absent in this repetition"));
-  }
-  return an::mean_sd(v).sd;
-}
-
-/// Delta-method standard errors through the model's scale parameter s (k or E*), which the
-/// model's force is proportional to: F = s g(delta).
-///   delta0: s g(delta0) = F_0  ->  d delta0/ds = -F_0 / (s k_t(delta0))
-///   k_t at a fixed depth = s g'(delta)  ->  se = k_t se_s / s
-///   k_t at delta0: d/ds = g'(delta0) + s g''(delta0) d delta0/ds (g'' by central difference)
-struct DerivedSe {
-  an::Value delta0, k_at_delta0;
-  std::vector<an::Value> k_at_depth;
-};
-DerivedSe derived_se(const an::IndentationResult& r, const an::ModelFit* m) {
-  DerivedSe d;
-  const std::string no_fit = "no model fitted";
-  if (m == nullptr || m->params.size() == 0 || m->se.size() == 0) {
-    d.delta0 = d.k_at_delta0 = an::Value::absent(no_fit);
-    d.k_at_depth.assign(r.k_tangent_N_per_m.size(), an::Value::absent(no_fit));
-    return d;
-  }
-  const double s = m->params[0], se_s = m->se[0];
-  for (const auto& k : r.k_tangent_N_per_m)
-    d.k_at_depth.push_back(k ? an::Value::of(std::abs(*k.value * se_s / s)) : an::Value::absent(k.reason));
-  if (!r.delta0_m) {
-    d.delta0 = d.k_at_delta0 = an::Value::absent(r.delta0_m.reason);
-    return d;
-  }
-  const double d0 = *r.delta0_m.value, kt = m->stiffness_N_per_m(d0);
-  const double dd0_ds = -r.F0_N / (s * kt);
-  const double h = std::max(1e-9, 1e-4 * d0);
-  const double g2 = (m->stiffness_N_per_m(d0 + h) - m->stiffness_N_per_m(d0 - h)) / (2 * h * s);
-  d.delta0 = an::Value::of(std::abs(dd0_ds * se_s));
-  d.k_at_delta0 = an::Value::of(std::abs((kt / s + s * g2 * dd0_ds) * se_s));
-  return d;
-}
-
-const an::ModelFit* chosen_fit(const an::IndentationResult& r) {
-  if (!r.chosen) return nullptr;
-  switch (*r.chosen) {
-    case an::Model::linear: return r.linear ? &*r.linear : nullptr;
-    case an::Model::hertz: return r.hertz ? &*r.hertz : nullptr;
-    case an::Model::sneddon: return r.sneddon ? &*r.sneddon : nullptr;
-  }
-  return nullptr;
-}
-
-const char* kSdNote = "model-free: no fit standard error (see the _sd over repetitions)";
-
-json indentation_json(const AnalyzeCli& o, const an::IndentationParams& p,
-                      const an::IndentationResult& r, const an::RepetitionSummary& reps) {
-  json j;
-  j["params"] = params_json(o, p);
-  const an::ModelFit* best = chosen_fit(r);
-  const double mm = 1e3, N_per_mm = 1e-3;
-
-  put3(j, "contact_point_mm", r.contact_z_m,
-       best ? an::Value::of(best->contact_z_se_m) : an::Value::absent(r.fit_reason),
-       reps.contact_z_m.sd, mm);
-
-  auto fit_value = [](const std::optional<an::ModelFit>& f, const std::string& why, bool se) {
-    if (!f) return an::Value::absent(why);
-    return an::Value::of(se ? f->se[0] : f->params[0]);
-  };
-  auto fit_sd = [&](an::Model m) {
-    return sd_over(reps, [m](const an::IndentationResult& x) -> std::optional<double> {
-      const auto& f = m == an::Model::linear ? x.linear : m == an::Model::hertz ? x.hertz : x.sneddon;
-      return f ? std::optional<double>(f->params[0]) : std::nullopt;
-    }, std::string(an::model_name(m)) + " fit");
-  };
-  put3(j, "k_linear_N_per_mm", fit_value(r.linear, r.linear_reason, false),
-       fit_value(r.linear, r.linear_reason, true), fit_sd(an::Model::linear), N_per_mm);
-  put(j, "r2_linear", r.linear ? std::optional<double>(r.linear->r2) : std::nullopt, 1.0, r.linear_reason);
-  const double e_of_estar = 1.0 - p.poisson * p.poisson;  // E = E* (1 - nu^2)
-  for (auto [m, name, reason] : {std::tuple{an::Model::hertz, "hertz", &r.hertz_reason},
-                                 std::tuple{an::Model::sneddon, "sneddon", &r.sneddon_reason}}) {
-    const auto& f = m == an::Model::hertz ? r.hertz : r.sneddon;
-    const an::Value sd = fit_sd(m);
-    const std::string key = std::string("E_star_") + name + "_Pa";
-    put3(j, key, fit_value(f, *reason, false), fit_value(f, *reason, true), sd, 1.0);
-    put(j, std::string("r2_") + name, f ? std::optional<double>(f->r2) : std::nullopt, 1.0, *reason);
-    const std::string ekey = std::string("E_") + name + "_Pa";
-    put3(j, ekey, fit_value(f, *reason, false), fit_value(f, *reason, true), sd, e_of_estar);
-  }
-  if (r.chosen) {
-    j["model_by_aic"] = an::model_name(*r.chosen);
-  } else {
-    j["model_by_aic"] = nullptr;
-    j["model_by_aic_reason"] = r.fit_reason;
-  }
-
-  const DerivedSe se = derived_se(r, best);
-  put3(j, "delta0_mm", r.delta0_m, se.delta0, reps.delta0_m.sd, mm);
-  put3(j, "k_tangent_N_per_mm", r.k_tangent_at_delta0_N_per_m, se.k_at_delta0,
-       reps.k_tangent_at_delta0_N_per_m.sd, N_per_mm);
-  const an::Value none = an::Value::absent(kSdNote);
-  put3(j, "k_fd_N_per_mm", r.k_fd_N_per_m, none, reps.k_fd_N_per_m.sd, N_per_mm);
-  put3(j, "k_ls_window_N_per_mm", r.k_window_N_per_m, none, reps.k_window_N_per_m.sd, N_per_mm);
-  put3(j, "k_fd_paper_N_per_mm", r.k_fd_paper_N_per_m, none, reps.k_fd_paper_N_per_m.sd, N_per_mm);
-
-  json at = json::object(), at_se = json::object(), at_sd = json::object();
-  for (std::size_t k = 0; k < r.tangent_depths_m.size(); ++k) {
-    const std::string key = fmt(r.tangent_depths_m[k] * 1e3) + "_mm";
-    put(at, key, r.k_tangent_N_per_m[k], N_per_mm);
-    put(at_se, key, se.k_at_depth[k], N_per_mm);
-    put(at_sd, key, k < reps.k_tangent_N_per_m.size() ? reps.k_tangent_N_per_m[k].sd
-                                                       : an::Value::absent("no repetitions"), N_per_mm);
-  }
-  j["k_at_depth_N_per_mm"] = at;
-  j["k_at_depth_N_per_mm_se"] = at_se;
-  j["k_at_depth_N_per_mm_sd"] = at_sd;
-  return j;
-}
 
 void print_or_json(const Context& ctx, const json& j) {
   if (ctx.json) print_json(j);
@@ -306,7 +161,10 @@ int analyze_indentation(const Context& ctx, const AnalyzeCli& o) {
   kf_table_of(o, l, p);
   const an::IndentationResult r = an::analyze_indentation(l.curve, p);
   const an::RepetitionSummary reps = an::analyze_repetitions(l.curve, p);
-  print_or_json(ctx, indentation_json(o, p, r, reps));
+  // the SDK's summary: what palpctl indent prints and result.json holds
+  json j = palp::indentation_summary_json(r, &reps, p);
+  j["params"] = params_json(o, p);
+  print_or_json(ctx, j);
   return kOk;
 }
 

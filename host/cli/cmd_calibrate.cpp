@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common.hpp"
+#include "palp/result.hpp"
 #include "palp/identification.hpp"
 
 namespace palpctl {
@@ -33,7 +34,7 @@ int calibrate(const Context& ctx, const std::string& what, const CalibrateOption
   }
   if (!o.ram_only) probe.commit_calibration();
   j["committed"] = !o.ram_only;
-  j["calibration"] = to_json(probe.calibration());
+  j["calibration"] = palp::calibration_json(probe.calibration());
   if (ctx.json) {
     print_json(j);
   } else {

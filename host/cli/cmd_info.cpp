@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "common.hpp"
+#include "palp/result.hpp"
 
 namespace palpctl {
 
@@ -14,7 +15,7 @@ int info(const Context& ctx) {
             {"handshake", to_json(probe.handshake())},
             {"status", to_json(probe.status())},
             {"params", to_json(probe.params())},
-            {"calibration", to_json(probe.calibration())},
+            {"calibration", palp::calibration_json(probe.calibration())},
             {"health", to_json(probe.health())}};
   if (ctx.json) {
     print_json(j);

@@ -80,9 +80,7 @@ int map(const Context& ctx, const MapCli& o) {
                                                                         : palp::IndentationPreset::two_d);
   if (o.repetitions > 0) options.settings.repetitions = o.repetitions;
   options.resume = o.resume;
-  palp::ConnectOptions co;
-  co.timeout = std::chrono::milliseconds(static_cast<long>(ctx.timeout_s * 1000));
-  palp::Probe probe(rig.probe_uri, co);
+  palp::Probe probe = ctx.connect(rig.probe_uri);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };

@@ -44,9 +44,7 @@ int trace(const Context& ctx, const TraceCli& o) {
   }
   std::filesystem::create_directories(dir);
 
-  palp::ConnectOptions co;
-  co.timeout = std::chrono::milliseconds(static_cast<long>(ctx.timeout_s * 1000));
-  palp::Probe probe(rig.probe_uri, co);
+  palp::Probe probe = ctx.connect(rig.probe_uri);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
@@ -109,9 +107,7 @@ struct TouchOffCli {
 
 int touch_off(const Context& ctx, const TouchOffCli& o) {
   palp::Rig rig = palp::load_rig(o.rig);
-  palp::ConnectOptions co;
-  co.timeout = std::chrono::milliseconds(static_cast<long>(ctx.timeout_s * 1000));
-  palp::Probe probe(rig.probe_uri, co);
+  palp::Probe probe = ctx.connect(rig.probe_uri);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   palp::Pose start[3];

@@ -38,11 +38,11 @@ int report(const Context& ctx, int code, const char* kind, const std::string& me
 }
 }  // namespace
 
-palp::Probe Context::connect() const {
+palp::Probe Context::connect(const std::string& probe_uri) const {
   palp::ConnectOptions o;
   o.timeout = std::chrono::milliseconds(static_cast<long>(std::lround(timeout_s * 1e3)));
   o.host_software = std::string("palpctl ") + palp::sdk_version();
-  return palp::Probe(uri, o);
+  return palp::Probe(probe_uri, o);
 }
 
 namespace {
@@ -144,36 +144,6 @@ json to_json(const palp::Params& p) {
           {"contact_output_hold_s", s_from_ms(p.contact_output_hold_ms)}};
 }
 
-namespace {
-json f32s(const palp::proto::Arr<float, 6>& a) {
-  json j = json::array();
-  for (float v : a) j.push_back(f32(v));
-  return j;
-}
-}  // namespace
-
-json to_json(const palp::Calibration& c) {
-  json table = json::array();
-  for (std::size_t k = 0; k < c.kf_position_counts.size && k < c.kf_N_per_A.size; ++k)
-    table.push_back({{"position_mm", mm_from_counts(c.kf_position_counts.items[k])},
-                     {"kf_N_per_A", f32(c.kf_N_per_A.items[k])}});
-  json j = {{"layout_version", c.layout_version},
-            {"kf_table", table},
-            {"current_offset_A", f32(c.current_offset_A)},
-            {"current_gain", f32(c.current_gain)},
-            {"pressure_offset_Pa", f32s(c.pressure_offset_Pa)},
-            {"pressure_gain", f32s(c.pressure_gain)},
-            {"spring_k_N_per_mm", N_per_mm_from_N_per_m(f32(c.spring_k_N_per_m))},
-            {"stroke_origin_valid", c.stroke_origin_valid != 0}};
-  if (c.stroke_origin_valid != 0) {
-    j["stroke_origin_mm"] = mm_from_counts(c.stroke_origin_counts);
-  } else {
-    j["stroke_origin_mm"] = nullptr;
-    j["stroke_origin_mm_reason"] = "not homed (palpctl calibrate home)";
-  }
-  return j;
-}
-
 json to_json(const palp::HealthCounters& h) {
   json device = nullptr;
   if (h.device_valid)
@@ -222,18 +192,6 @@ json to_json(const palp::FaultInfo& f) {
           {"t_device_s", f.t_device_s},
           {"detail", f.detail},
           {"text", f.text}};
-}
-
-json to_json(const palp::ZeroingRecord& z) {
-  // the recording sidecar's form (palp/recording.hpp): values with their unit, lab units
-  // (offsets are the calibration block's f32 values; the origin is a whole encoder count)
-  const bool home = z.what == "home";
-  json values = json::array();
-  for (double v : z.values)
-    values.push_back(home ? mm_from_counts(std::llround(v * 1e6)) : f32(static_cast<float>(v)));
-  const char* unit = home ? "mm" : z.what == "current_offset" ? "A" : z.what == "pressure_zero" ? "Pa" : "";
-  return {{"what", z.what}, {"t_device_s", z.t_device_s}, {"values", values},
-          {"values_unit", unit}, {"committed", z.committed}};
 }
 
 json to_json(const palp::ProgramResult& r) {

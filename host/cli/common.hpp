@@ -38,8 +38,10 @@ struct Context {
   bool json = false;
   std::function<int()> action;
 
-  /// Connects and runs the handshake with the global options.
-  palp::Probe connect() const;
+  /// Connects and runs the handshake with the global options (--uri, --timeout-s).
+  palp::Probe connect() const { return connect(uri); }
+  /// The same at another URI (a rig file's probe_uri).
+  palp::Probe connect(const std::string& probe_uri) const;
 };
 
 // --- command registration (one file per command group) ------------------------------------
@@ -101,11 +103,9 @@ std::string name_of(E value) {
 json to_json(const palp::DeviceInfo& d);
 json to_json(const palp::Handshake& h);
 json to_json(const palp::Params& p);
-json to_json(const palp::Calibration& c);
 json to_json(const palp::HealthCounters& h);
 json to_json(const palp::Status& s);
 json to_json(const palp::FaultInfo& f);
-json to_json(const palp::ZeroingRecord& z);
 json to_json(const palp::ProgramResult& r);
 
 /// Prints a JSON object as indented "key: value" lines (the human form of the same data).

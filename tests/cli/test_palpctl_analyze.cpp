@@ -97,14 +97,15 @@ double hertz_depth_at(double F, double Estar) {  // F = 4/3 E* sqrt(R) d^1.5
   return std::pow(3.0 * F / (4.0 * Estar * std::sqrt(kR)), 2.0 / 3.0);
 }
 
-TEST_F(AnalyzeDir, IndentationJsonHasExactlyTheIssuesKeys) {
+TEST_F(AnalyzeDir, IndentationJsonHasExactlyTheSdkSummarysKeys) {
   const auto csv = write("hertz", [](double d) { return an::hertz_force_N(d, 2.0e6, kR); });
   const auto r = palpctl({"analyze", "indentation", "--input", csv, "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = parse(r);
   std::set<std::string> want = {"params", "r2_linear", "r2_hertz", "r2_sneddon", "model_by_aic",
                                 "k_at_depth_N_per_mm", "k_at_depth_N_per_mm_se",
-                                "k_at_depth_N_per_mm_sd"};
+                                "k_at_depth_N_per_mm_sd", "aic_linear", "aic_hertz", "aic_sneddon",
+                                "F0_N", "has_baseline", "n_loading", "n_unloading", "repetitions"};
   for (const char* k : {"contact_point_mm", "k_linear_N_per_mm", "E_star_hertz_Pa", "E_hertz_Pa",
                         "E_star_sneddon_Pa", "E_sneddon_Pa", "delta0_mm", "k_tangent_N_per_mm",
                         "k_fd_N_per_mm", "k_ls_window_N_per_mm", "k_fd_paper_N_per_mm"})
@@ -133,7 +134,9 @@ TEST_F(AnalyzeDir, IndentationJsonHasExactlyTheIssuesKeys) {
   EXPECT_EQ(p["bias_current_A"], 1.0);
   EXPECT_NEAR(p["bias_force_N"].get<double>(), 1.459, 1e-12);
   EXPECT_TRUE(p["thickness_mm"].is_null());
-  EXPECT_EQ(p["thickness_mm_reason"], "no --thickness-mm: a semi-infinite half-space");
+  EXPECT_EQ(p["thickness_mm_reason"], "no finite-thickness correction asked for");
+  EXPECT_EQ(p["input"], csv);
+  EXPECT_EQ(p["kf_table"], false);
 }
 
 TEST_F(AnalyzeDir, IndentationOnAHertzSolidRecoversEstarContactPointDelta0AndTangents) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "experiment_common.hpp"
+#include "format/field_table.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 
@@ -90,6 +91,11 @@ struct Reader {
       throw ConfigError(where + ": \"" + key + "\" is not a whole number");
     return v.get<T>();
   }
+  // a field table's Source (format/field_table.hpp; every key required, no ranges)
+  bool has(const char* key) const { return j.is_object() && j.contains(key) && !j[key].is_null(); }
+  double number(const char* key, const format::Range&) const { return num(key); }
+  long long integer(const char* key, const format::Range&) const { return integer<long long>(key); }
+  std::string text(const char* key) const { return str(key); }
   bool boolean(const char* key) const {
     const auto& v = at(key);
     if (!v.is_boolean()) throw ConfigError(where + ": \"" + key + "\" is not true or false");
@@ -102,45 +108,61 @@ struct Reader {
   }
 };
 
+using format::Field;
+
+// the settings as the sidecar's extra.identification keeps them; method, phase_mode and the
+// K_f table by hand
+const Field<IdentificationSettings> kSettingsFields[] = {
+    {"in_contact", &IdentificationSettings::in_contact},
+    {"bias_A", &IdentificationSettings::bias_A},
+    {"amplitude_A", &IdentificationSettings::amplitude_A},
+    {"f_lo_Hz", &IdentificationSettings::f_lo_Hz},
+    {"f_hi_Hz", &IdentificationSettings::f_hi_Hz},
+    {"step_Hz", &IdentificationSettings::step_Hz},
+    {"settle_cycles", &IdentificationSettings::settle_cycles},
+    {"settle_min_s", &IdentificationSettings::settle_min_s},
+    {"measure_cycles", &IdentificationSettings::measure_cycles},
+    {"fundamental_Hz", &IdentificationSettings::fundamental_Hz},
+    {"line_step", &IdentificationSettings::line_step},
+    {"discard_periods", &IdentificationSettings::discard_periods},
+    {"measured_periods", &IdentificationSettings::measured_periods},
+    {"phase_seed", &IdentificationSettings::phase_seed},
+    {"stream_rate_Hz", &IdentificationSettings::stream_rate_Hz},
+    {"settle_s", &IdentificationSettings::settle_s},
+    {"contact_current_A", &IdentificationSettings::contact_current_A},
+    {"max_excursion_mm", &IdentificationSettings::max_excursion_m, format::kMm},
+};
+const Field<analysis::FrfOptions> kFrfFields[] = {
+    {"kf_N_per_A", &analysis::FrfOptions::force_constant_N_per_A},
+    {"kf_table_stroke_origin_z_mm", &analysis::FrfOptions::stroke_origin_z_m, format::kMm},
+    {"distortion_limit", &analysis::FrfOptions::distortion_limit},
+};
+const Field<analysis::InstrumentDynamics> kInstrumentFields[] = {
+    {"m_v_kg", &analysis::InstrumentDynamics::m_v_kg},
+    {"b_v_N_s_per_m", &analysis::InstrumentDynamics::b_v_N_s_per_m},
+    {"k_v_N_per_mm", &analysis::InstrumentDynamics::k_v_N_per_m, format::kNPerMm},
+};
+const Field<analysis::SecondOrderOptions> kFitFields[] = {
+    {"sk_iterations", &analysis::SecondOrderOptions::sk_iterations},
+    {"max_lm_iterations", &analysis::SecondOrderOptions::max_lm_iterations},
+    {"adequate_cost", &analysis::SecondOrderOptions::adequate_cost},
+};
+
 }  // namespace
 
 nlohmann::json identification_settings_json(const IdentificationSettings& s) {
   nlohmann::json table = nlohmann::json::array();
   for (std::size_t k = 0; k < s.frf.kf_table_stroke_m.size() && k < s.frf.kf_table_N_per_A.size(); ++k)
-    table.push_back({{"position_mm", s.frf.kf_table_stroke_m[k] * 1e3},
+    table.push_back({{"position_mm", s.frf.kf_table_stroke_m[k] * format::kMm},
                      {"kf_N_per_A", s.frf.kf_table_N_per_A[k]}});
-  return {{"method", sweep_method_name(s.method)},
-          {"in_contact", s.in_contact},
-          {"bias_A", s.bias_A},
-          {"amplitude_A", s.amplitude_A},
-          {"f_lo_Hz", s.f_lo_Hz},
-          {"f_hi_Hz", s.f_hi_Hz},
-          {"step_Hz", s.step_Hz},
-          {"settle_cycles", s.settle_cycles},
-          {"settle_min_s", s.settle_min_s},
-          {"measure_cycles", s.measure_cycles},
-          {"fundamental_Hz", s.fundamental_Hz},
-          {"line_step", s.line_step},
-          {"discard_periods", s.discard_periods},
-          {"measured_periods", s.measured_periods},
-          {"phase_seed", s.phase_seed},
-          {"phase_mode", proto::enum_name(s.phase_mode) ? proto::enum_name(s.phase_mode) : "?"},
-          {"stream_rate_Hz", s.stream_rate_Hz},
-          {"settle_s", s.settle_s},
-          {"contact_current_A", s.contact_current_A},
-          {"max_excursion_mm", s.max_excursion_m * 1e3},
-          {"kf_N_per_A", s.frf.force_constant_N_per_A},
-          {"kf_table", table},
-          {"kf_table_stroke_origin_z_mm", s.frf.stroke_origin_z_m * 1e3},
-          {"distortion_limit", s.frf.distortion_limit},
-          {"instrument",
-           {{"m_v_kg", s.instrument.m_v_kg},
-            {"b_v_N_s_per_m", s.instrument.b_v_N_s_per_m},
-            {"k_v_N_per_mm", s.instrument.k_v_N_per_m * 1e-3}}},
-          {"fit",
-           {{"sk_iterations", s.fit.sk_iterations},
-            {"max_lm_iterations", s.fit.max_lm_iterations},
-            {"adequate_cost", s.fit.adequate_cost}}}};
+  nlohmann::json j = {{"method", sweep_method_name(s.method)},
+                      {"phase_mode", proto::enum_name(s.phase_mode) ? proto::enum_name(s.phase_mode) : "?"},
+                      {"kf_table", table}};
+  format::write_fields(j, s, kSettingsFields);
+  format::write_fields(j, s.frf, kFrfFields);
+  format::write_fields(j["instrument"], s.instrument, kInstrumentFields);
+  format::write_fields(j["fit"], s.fit, kFitFields);
+  return j;
 }
 
 IdentificationSettings identification_settings_from_json(const nlohmann::json& j) {
@@ -151,44 +173,20 @@ IdentificationSettings identification_settings_from_json(const nlohmann::json& j
     throw ConfigError("the identification settings: method \"" + method +
                       "\" is neither stepped nor multisine");
   s.method = method == "stepped" ? SweepMethod::stepped : SweepMethod::multisine;
-  s.in_contact = r.boolean("in_contact");
-  s.bias_A = r.num("bias_A");
-  s.amplitude_A = r.num("amplitude_A");
-  s.f_lo_Hz = r.num("f_lo_Hz");
-  s.f_hi_Hz = r.num("f_hi_Hz");
-  s.step_Hz = r.num("step_Hz");
-  s.settle_cycles = r.integer<int>("settle_cycles");
-  s.settle_min_s = r.num("settle_min_s");
-  s.measure_cycles = r.integer<int>("measure_cycles");
-  s.fundamental_Hz = r.num("fundamental_Hz");
-  s.line_step = r.integer<int>("line_step");
-  s.discard_periods = r.integer<int>("discard_periods");
-  s.measured_periods = r.integer<int>("measured_periods");
-  s.phase_seed = r.integer<std::uint32_t>("phase_seed");
+  format::read_fields(r, s, kSettingsFields);
   s.phase_mode = phase_mode_named(r.str("phase_mode"), r.where);
-  s.stream_rate_Hz = r.num("stream_rate_Hz");
-  s.settle_s = r.num("settle_s");
-  s.contact_current_A = r.num("contact_current_A");
-  s.max_excursion_m = r.num("max_excursion_mm") * 1e-3;
-  s.frf.force_constant_N_per_A = r.num("kf_N_per_A");
+  format::read_fields(r, s.frf, kFrfFields);
   const auto& table = r.at("kf_table");
   if (!table.is_array()) throw ConfigError("the identification settings: \"kf_table\" is not an array");
   for (const auto& row : table) {
     const Reader t{row, "the identification settings' kf_table row"};
-    s.frf.kf_table_stroke_m.push_back(t.num("position_mm") * 1e-3);
+    s.frf.kf_table_stroke_m.push_back(format::from_file(t.num("position_mm"), format::kMm));
     s.frf.kf_table_N_per_A.push_back(t.num("kf_N_per_A"));
   }
-  s.frf.stroke_origin_z_m = r.num("kf_table_stroke_origin_z_mm") * 1e-3;
-  s.frf.distortion_limit = r.num("distortion_limit");
   s.frf.multisine_discard_periods = s.discard_periods;
-  const Reader in{r.at("instrument"), "the identification settings' instrument"};
-  s.instrument.m_v_kg = in.num("m_v_kg");
-  s.instrument.b_v_N_s_per_m = in.num("b_v_N_s_per_m");
-  s.instrument.k_v_N_per_m = in.num("k_v_N_per_mm") * 1e3;
-  const Reader fit{r.at("fit"), "the identification settings' fit"};
-  s.fit.sk_iterations = fit.integer<int>("sk_iterations");
-  s.fit.max_lm_iterations = fit.integer<int>("max_lm_iterations");
-  s.fit.adequate_cost = fit.num("adequate_cost");
+  format::read_fields(Reader{r.at("instrument"), "the identification settings' instrument"}, s.instrument,
+                      kInstrumentFields);
+  format::read_fields(Reader{r.at("fit"), "the identification settings' fit"}, s.fit, kFitFields);
   return s;
 }
 

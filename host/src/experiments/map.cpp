@@ -6,6 +6,7 @@
 
 #include "palp/result.hpp"
 #include "toucher.hpp"
+#include "format/field_table.hpp"
 #include "trace_json.hpp"
 
 namespace palp {
@@ -15,37 +16,44 @@ namespace {
 using detail::Toucher;
 using nlohmann::json;
 
-json opt(const std::optional<double>& v, double scale) { return v ? json(*v * scale) : json(nullptr); }
+using format::Field;
+using format::Need;
 
-std::optional<double> opt_from(const json& j, const char* key, double scale) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return std::nullopt;
-  if (!it->is_number()) throw ConfigError(std::string("map.json: \"") + key + "\" must be a number or null");
-  return it->get<double>() * scale;
-}
+// every key optional on reading: an older or partial map.json reads with the defaults
+const Field<MapPoint> kMapPointFields[] = {
+    {"row", &MapPoint::row, 1.0, Need::optional},
+    {"column", &MapPoint::column, 1.0, Need::optional},
+    {"indented", &MapPoint::indented, 1.0, Need::optional},
+    {"reason", &MapPoint::reason, 1.0, Need::optional},
+    {"k_fd_N_per_mm", &MapPoint::k_fd_N_per_m, format::kNPerMm, Need::optional},
+    {"k_fd_N_per_mm_reason", &MapPoint::k_fd_reason, 1.0, Need::optional},
+    {"delta0_mm", &MapPoint::delta0_m, format::kMm, Need::optional},
+    {"k_tangent_N_per_mm", &MapPoint::k_tangent_N_per_m, format::kNPerMm, Need::optional},
+    {"result_dir", &MapPoint::result_dir, 1.0, Need::optional},
+};
+
+const Field<StiffnessMap> kMapFields[] = {
+    {"plan", &StiffnessMap::plan_name, 1.0, Need::optional},
+    {"rows", &StiffnessMap::rows, 1.0, Need::optional},
+    {"columns", &StiffnessMap::columns, 1.0, Need::optional},
+    {"complete", &StiffnessMap::complete, 1.0, Need::optional},
+    {"resume_index", &StiffnessMap::resume_index, 1.0, Need::optional},
+    {"stopped_because", &StiffnessMap::stopped_because, 1.0, Need::optional},
+};
 
 json map_json(const StiffnessMap& m) {
   json pts = json::array();
-  for (const MapPoint& p : m.points)
-    pts.push_back({{"row", p.row},
-                   {"column", p.column},
-                   {"indented", p.indented},
-                   {"reason", p.reason},
-                   {"k_fd_N_per_mm", opt(p.k_fd_N_per_m, 1e-3)},
-                   {"k_fd_N_per_mm_reason", p.k_fd_reason},
-                   {"delta0_mm", opt(p.delta0_m, 1e3)},
-                   {"k_tangent_N_per_mm", opt(p.k_tangent_N_per_m, 1e-3)},
-                   {"result_dir", p.result_dir}});
-  return {{"format", "palp.map/1"},
-          {"plan", m.plan_name},
-          {"rows", m.rows},
-          {"columns", m.columns},
-          {"settings", indentation_settings_json(m.settings)},
-          {"complete", m.complete},
-          {"resume_index", m.resume_index},
-          {"stopped_because", m.stopped_because},
-          {"surface", detail::trace_to_json(m.surface)},
-          {"points", pts}};
+  for (const MapPoint& p : m.points) {
+    json q;
+    format::write_fields(q, p, kMapPointFields);
+    pts.push_back(std::move(q));
+  }
+  json j = {{"format", "palp.map/1"},
+            {"settings", indentation_settings_json(m.settings)},
+            {"surface", detail::trace_to_json(m.surface)},
+            {"points", pts}};
+  format::write_fields(j, m, kMapFields);
+  return j;
 }
 
 class Mapper {
@@ -191,12 +199,7 @@ StiffnessMap load_map(const std::filesystem::path& dir) {
   if (!j.is_object() || j.value("format", std::string{}) != "palp.map/1")
     throw ConfigError(f + ": not a map (\"format\" is not \"palp.map/1\")");
   StiffnessMap m;
-  m.plan_name = j.value("plan", std::string{});
-  m.rows = j.value("rows", 0);
-  m.columns = j.value("columns", 0);
-  m.complete = j.value("complete", false);
-  m.resume_index = j.value("resume_index", std::size_t{0});
-  m.stopped_because = j.value("stopped_because", std::string{});
+  format::read_fields(format::JsonSource(j, f), m, kMapFields);
   m.surface = detail::trace_from_json(j.value("surface", json()), f + ": surface");
   const auto pts = j.find("points");
   if (pts == j.end() || !pts->is_array()) throw ConfigError(f + ": \"points\" must be an array");
@@ -204,15 +207,7 @@ StiffnessMap load_map(const std::filesystem::path& dir) {
     const json& q = (*pts)[k];
     if (!q.is_object()) throw ConfigError(f + ": points[" + std::to_string(k) + "] must be an object");
     MapPoint p;
-    p.row = q.value("row", 0);
-    p.column = q.value("column", 0);
-    p.indented = q.value("indented", false);
-    p.reason = q.value("reason", std::string{});
-    p.k_fd_N_per_m = opt_from(q, "k_fd_N_per_mm", 1e3);
-    p.k_fd_reason = q.value("k_fd_N_per_mm_reason", std::string{});
-    p.delta0_m = opt_from(q, "delta0_mm", 1e-3);
-    p.k_tangent_N_per_m = opt_from(q, "k_tangent_N_per_mm", 1e3);
-    p.result_dir = q.value("result_dir", std::string{});
+    format::read_fields(format::JsonSource(q, f + ": points[" + std::to_string(k) + "]"), p, kMapPointFields);
     m.points.push_back(p);
   }
   if (m.rows < 1 || m.columns < 1 || m.points.size() != m.resume_index ||

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "experiment_common.hpp"
+#include "format/field_table.hpp"
 #include "palp/protocol/messages.hpp"
 #include "palp/result.hpp"
 
@@ -18,8 +19,8 @@ namespace {
 using nlohmann::json;
 using analysis::Value;
 
-constexpr double kMm = 1e3;          // m -> mm
-constexpr double kNPerMm = 1e-3;     // N/m -> N/mm
+using format::kMm;
+using format::kNPerMm;
 
 using experiment::f32;
 
@@ -81,39 +82,6 @@ void put_sd(json& j, const std::string& key, const Value& sd, double scale) {
 
 constexpr const char* kModelFree = "model-free: no fit standard error (see the _sd over repetitions)";
 
-/// Delta-method standard errors through the chosen model's scale parameter s (k or E*), which
-/// its force is proportional to, F = s g(delta) (as palpctl analyze indentation gives them):
-///   delta0: s g(delta0) = F_0  ->  d delta0/ds = -F_0 / (s k_t(delta0))
-///   k_t at a fixed depth = s g'(delta)  ->  se = k_t se_s / s
-///   k_t at delta0: d/ds = g'(delta0) + s g''(delta0) d delta0/ds (g'' by central difference)
-struct DerivedSe {
-  Value delta0, k_at_delta0;
-  std::vector<Value> k_at_depth;
-};
-DerivedSe derived_se(const analysis::IndentationResult& r, const analysis::ModelFit* m) {
-  DerivedSe d;
-  if (m == nullptr || m->params.size() == 0 || m->se.size() == 0 || !std::isfinite(m->se[0])) {
-    const std::string why = r.fit_reason.empty() ? "no model fitted" : r.fit_reason;
-    d.delta0 = d.k_at_delta0 = Value::absent(why);
-    d.k_at_depth.assign(r.k_tangent_N_per_m.size(), Value::absent(why));
-    return d;
-  }
-  const double s = m->params[0], se_s = m->se[0];
-  for (const auto& k : r.k_tangent_N_per_m)
-    d.k_at_depth.push_back(k ? Value::of(std::abs(*k.value * se_s / s)) : Value::absent(k.reason));
-  if (!r.delta0_m) {
-    d.delta0 = d.k_at_delta0 = Value::absent(r.delta0_m.reason);
-    return d;
-  }
-  const double d0 = *r.delta0_m.value, kt = m->stiffness_N_per_m(d0);
-  const double dd0_ds = -r.F0_N / (s * kt);
-  const double h = std::max(1e-9, 1e-4 * d0);
-  const double g2 = (m->stiffness_N_per_m(d0 + h) - m->stiffness_N_per_m(d0 - h)) / (2 * h * s);
-  d.delta0 = Value::of(std::abs(dd0_ds * se_s));
-  d.k_at_delta0 = Value::of(std::abs((kt / s + s * g2 * dd0_ds) * se_s));
-  return d;
-}
-
 }  // namespace
 
 json indentation_params_json(const analysis::IndentationParams& p) {
@@ -153,10 +121,7 @@ json indentation_summary_json(const analysis::IndentationResult& r,
 
   // the contact point (a z in the recording's frame) of the chosen model
   put(j, "contact_point_mm", r.contact_z_m, kMm);
-  const analysis::ModelFit* chosen = nullptr;
-  if (r.chosen) chosen = *r.chosen == analysis::Model::linear ? &*r.linear
-                       : *r.chosen == analysis::Model::hertz  ? &*r.hertz
-                                                              : &*r.sneddon;
+  const analysis::ModelFit* chosen = analysis::chosen_fit(r);
   put(j, "contact_point_mm_se",
       chosen ? Value::of(chosen->contact_z_se_m) : Value::absent(r.contact_z_m.reason), kMm);
   if (reps) put_sd(j, "contact_point_mm", reps->contact_z_m.sd, kMm);
@@ -223,9 +188,10 @@ json indentation_summary_json(const analysis::IndentationResult& r,
       {"k_fd_paper_N_per_mm", r.k_fd_paper_N_per_m, reps ? &reps->k_fd_paper_N_per_m : nullptr,
        kNPerMm},
   };
-  const DerivedSe se = derived_se(r, chosen);
+  const analysis::DerivedSe se = analysis::derived_se(r);
   const Value model_free = Value::absent(kModelFree);
-  const Value* descriptor_se[] = {&se.delta0, &se.k_at_delta0, &model_free, &model_free, &model_free};
+  const Value* descriptor_se[] = {&se.delta0_m, &se.k_tangent_at_delta0_N_per_m, &model_free,
+                                  &model_free, &model_free};
   for (std::size_t k = 0; k < std::size(descriptors); ++k) {
     const auto& d = descriptors[k];
     put(j, d.key, d.value, d.scale);
@@ -236,7 +202,7 @@ json indentation_summary_json(const analysis::IndentationResult& r,
   for (std::size_t k = 0; k < r.tangent_depths_m.size() && k < r.k_tangent_N_per_m.size(); ++k) {
     const std::string key = depth_key(r.tangent_depths_m[k]);
     put(at, key, r.k_tangent_N_per_m[k], kNPerMm);
-    put(at_se, key, k < se.k_at_depth.size() ? se.k_at_depth[k] : Value::absent("no model fitted"), kNPerMm);
+    put(at_se, key, k < se.k_tangent_N_per_m.size() ? se.k_tangent_N_per_m[k] : Value::absent("no model fitted"), kNPerMm);
     if (reps && k < reps->k_tangent_N_per_m.size())
       put(at_sd, key, reps->k_tangent_N_per_m[k].sd, kNPerMm);
   }

@@ -7,6 +7,7 @@
 
 #include "palp/error.hpp"
 #include "palp/trace.hpp"
+#include "format/field_table.hpp"
 #include "trace_json.hpp"
 
 namespace palp {
@@ -14,20 +15,34 @@ namespace palp {
 namespace {
 
 using nlohmann::json;
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+using format::Field;
+using format::Need;
 
-json pose_json(const Pose& p) {
-  return json::array({p.x_m * 1e3, p.y_m * 1e3, p.z_m * 1e3, p.a_rad * kDeg, p.b_rad * kDeg, p.c_rad * kDeg});
-}
+// a point's measured part (read back; finish_surface derives the rest again) and, written only,
+// the derived scalars
+const Field<TracePoint> kTracePointFields[] = {
+    {"detection_force_N", &TracePoint::detection_force_N},
+    {"contact_stiffness_N_per_mm", &TracePoint::contact_stiffness_N_per_m, format::kNPerMm, Need::optional},
+    {"overtravel_mm", &TracePoint::overtravel_m, format::kMm},
+    {"guard_fired", &TracePoint::guard_fired},
+    {"tcp_at_rest_mm_deg", &TracePoint::tcp_at_rest},
+    {"stroke_at_rest_mm", &TracePoint::stroke_at_rest_m, format::kMm},
+    {"tilt_deg", &TracePoint::tilt_rad, format::kDeg, Need::written},
+    {"indentation_mm", &TracePoint::indentation_m, format::kMm, Need::written},
+};
 
-Pose pose_from(const json& j, const std::string& what) {
-  if (!j.is_array() || j.size() != 6)
-    throw ConfigError(what + ": expected [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]");
-  for (const json& v : j)
-    if (!v.is_number()) throw ConfigError(what + ": every element must be a number");
-  return Pose{j[0].get<double>() * 1e-3, j[1].get<double>() * 1e-3, j[2].get<double>() * 1e-3,
-              j[3].get<double>() / kDeg,  j[4].get<double>() / kDeg,  j[5].get<double>() / kDeg};
-}
+const Field<TracedSurface> kSurfaceFields[] = {
+    {"plan", &TracedSurface::plan_name, 1.0, Need::optional},
+    {"rows", &TracedSurface::rows},
+    {"columns", &TracedSurface::columns},
+    {"work_object_mm_deg", &TracedSurface::work_object},
+    {"tip_radius_mm", &TracedSurface::tip_radius_m, format::kMm},
+    {"contact_E_star_Pa", &TracedSurface::contact_E_star_Pa, 1.0, Need::optional},
+    {"normals_from_grid", &TracedSurface::normals_from_grid, 1.0, Need::written},
+    {"complete", &TracedSurface::complete, 1.0, Need::optional},
+    {"resume_index", &TracedSurface::resume_index},
+    {"stopped_because", &TracedSurface::stopped_because, 1.0, Need::optional},
+};
 
 json point_json(const TracePoint& p) {
   json j = {{"row", p.row}, {"column", p.column}, {"ok", p.ok}};
@@ -35,47 +50,25 @@ json point_json(const TracePoint& p) {
     j["reason"] = p.reason;
     return j;
   }
-  j["contact_mm"] = {p.x_m * 1e3, p.y_m * 1e3, p.z_m * 1e3};
-  j["apex_mm"] = {p.apex_x_m * 1e3, p.apex_y_m * 1e3, p.apex_z_m * 1e3};
+  j["contact_mm"] = {p.x_m * format::kMm, p.y_m * format::kMm, p.z_m * format::kMm};
+  j["apex_mm"] = {p.apex_x_m * format::kMm, p.apex_y_m * format::kMm, p.apex_z_m * format::kMm};
   j["normal"] = {p.normal[0], p.normal[1], p.normal[2]};
-  j["tilt_deg"] = p.tilt_rad * kDeg;
-  j["detection_force_N"] = p.detection_force_N;
-  j["contact_stiffness_N_per_mm"] =
-      p.contact_stiffness_N_per_m ? json(*p.contact_stiffness_N_per_m * 1e-3) : json(nullptr);
-  j["indentation_mm"] = p.indentation_m * 1e3;
-  j["overtravel_mm"] = p.overtravel_m * 1e3;
-  j["guard_fired"] = p.guard_fired;
-  j["tcp_at_rest_mm_deg"] = pose_json(p.tcp_at_rest);
-  j["stroke_at_rest_mm"] = p.stroke_at_rest_m * 1e3;
+  format::write_fields(j, p, kTracePointFields);
   return j;
-}
-
-double num(const json& j, const char* key, const std::string& where) {
-  const auto it = j.find(key);
-  if (it == j.end() || !it->is_number()) throw ConfigError(where + ": \"" + key + "\" must be a number");
-  return it->get<double>();
 }
 
 TracePoint point_from(const json& j, const std::string& where) {
   if (!j.is_object()) throw ConfigError(where + ": must be an object");
+  const format::JsonSource src(j, where);
   TracePoint p;
-  p.row = static_cast<int>(num(j, "row", where));
-  p.column = static_cast<int>(num(j, "column", where));
-  const auto ok = j.find("ok");
-  if (ok == j.end() || !ok->is_boolean()) throw ConfigError(where + ": \"ok\" must be true or false");
-  p.ok = ok->get<bool>();
+  p.row = static_cast<int>(src.integer("row", {}));
+  p.column = static_cast<int>(src.integer("column", {}));
+  p.ok = src.boolean("ok");
   if (!p.ok) {
-    p.reason = j.value("reason", std::string{});
+    p.reason = src.has("reason") ? src.text("reason") : std::string{};
     return p;
   }
-  // the measured part; finish_surface derives the rest again
-  p.detection_force_N = num(j, "detection_force_N", where);
-  const auto kc = j.find("contact_stiffness_N_per_mm");
-  if (kc != j.end() && !kc->is_null()) p.contact_stiffness_N_per_m = num(j, "contact_stiffness_N_per_mm", where) * 1e3;
-  p.overtravel_m = num(j, "overtravel_mm", where) * 1e-3;
-  p.guard_fired = static_cast<int>(num(j, "guard_fired", where));
-  p.tcp_at_rest = pose_from(j.value("tcp_at_rest_mm_deg", json()), where + ": tcp_at_rest_mm_deg");
-  p.stroke_at_rest_m = num(j, "stroke_at_rest_mm", where) * 1e-3;
+  format::read_fields(src, p, kTracePointFields);
   return p;
 }
 
@@ -84,17 +77,8 @@ TracePoint point_from(const json& j, const std::string& where) {
 namespace detail {
 
 json trace_to_json(const TracedSurface& s) {
-  json j = {{"format", "palp.trace/1"},
-            {"plan", s.plan_name},
-            {"rows", s.rows},
-            {"columns", s.columns},
-            {"work_object_mm_deg", pose_json(s.work_object)},
-            {"tip_radius_mm", s.tip_radius_m * 1e3},
-            {"contact_E_star_Pa", s.contact_E_star_Pa ? json(*s.contact_E_star_Pa) : json(nullptr)},
-            {"normals_from_grid", s.normals_from_grid},
-            {"complete", s.complete},
-            {"resume_index", s.resume_index},
-            {"stopped_because", s.stopped_because}};
+  json j = {{"format", "palp.trace/1"}};
+  format::write_fields(j, s, kSurfaceFields);
   json pts = json::array();
   for (const TracePoint& p : s.points) pts.push_back(point_json(p));
   j["points"] = std::move(pts);
@@ -134,16 +118,7 @@ TracedSurface trace_from_json(const json& j, const std::string& f) {
   if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
     throw ConfigError(f + ": not a trace (\"format\" is not \"palp.trace/1\")");
   TracedSurface s;
-  s.plan_name = j.value("plan", std::string{});
-  s.rows = static_cast<int>(num(j, "rows", f));
-  s.columns = static_cast<int>(num(j, "columns", f));
-  s.work_object = pose_from(j.value("work_object_mm_deg", json()), f + ": work_object_mm_deg");
-  s.tip_radius_m = num(j, "tip_radius_mm", f) * 1e-3;
-  const auto es = j.find("contact_E_star_Pa");
-  if (es != j.end() && !es->is_null()) s.contact_E_star_Pa = num(j, "contact_E_star_Pa", f);
-  s.complete = j.value("complete", false);
-  s.resume_index = static_cast<std::size_t>(num(j, "resume_index", f));
-  s.stopped_because = j.value("stopped_because", std::string{});
+  format::read_fields(format::JsonSource(j, f), s, kSurfaceFields);
   const auto pts = j.find("points");
   if (pts == j.end() || !pts->is_array()) throw ConfigError(f + ": \"points\" must be an array");
   for (std::size_t k = 0; k < pts->size(); ++k)

@@ -132,6 +132,29 @@ std::vector<double> Fields::numbers(const std::string& key, std::size_t count) c
   return out;
 }
 
+bool Fields::boolean(const std::string& key) const {
+  const nlohmann::json& j = at(key);
+  if (!j.is_boolean()) fail(key, "must be true or false");
+  return j.get<bool>();
+}
+
+Pose Fields::pose(const std::string& key) const {
+  const std::vector<double> v = numbers(key, 6);
+  for (std::size_t k = 3; k < 6; ++k)
+    if (std::abs(v[k]) > 360.0) fail(key, "angles must be within +-360 deg");
+  for (std::size_t k = 0; k < 3; ++k)
+    if (std::abs(v[k]) > 1e5) fail(key, "positions must be within +-100 m");
+  return format::pose_of_mm_deg({v[0], v[1], v[2], v[3], v[4], v[5]});
+}
+
+double Fields::number(const std::string& key, const format::Range& r) const {
+  return r.positive ? positive(key, r.hi, r.unit) : number(key, r.lo, r.hi, r.unit);
+}
+
+long long Fields::integer(const std::string& key, const format::Range& r) const {
+  return integer(key, static_cast<int>(r.lo), static_cast<int>(r.hi));
+}
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot read the file");

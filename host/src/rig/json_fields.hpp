@@ -4,12 +4,12 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "format/field_table.hpp"
 #include <string_view>
 #include <vector>
 
 namespace palp::rig_detail {
-
-inline constexpr double kMm = 1e-3;  ///< metres per millimetre: the files are in mm
 
 class Fields {
  public:
@@ -26,6 +26,19 @@ class Fields {
   double positive(const std::string& key, double hi, std::string_view unit) const;
   int integer(const std::string& key, int lo, int hi) const;
   std::vector<double> numbers(const std::string& key, std::size_t count) const;
+  bool boolean(const std::string& key) const;
+  /// [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]: positions within +-100 m, angles within +-360 deg.
+  Pose pose(const std::string& key) const;
+  // a field table's Source (format/field_table.hpp): the range's checks and unit
+  double number(const std::string& key, const format::Range& r) const;
+  long long integer(const std::string& key, const format::Range& r) const;
+  /// The table's keys (and `more`): every other key in the object is unknown.
+  template <class T, std::size_t N>
+  static std::vector<std::string> keys(const format::Field<T> (&table)[N],
+                                       std::vector<std::string> more = {}) {
+    for (const auto& f : table) more.emplace_back(f.key);
+    return more;
+  }
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
   void require(const std::vector<std::string>& keys) const;
 

@@ -20,8 +20,8 @@ void spread(const rig_detail::Fields& g, const std::string& key, int n, double& 
   const std::vector<double> v = g.numbers(key, 2);
   if (v[1] < v[0]) g.fail(key, "must be [min, max] with min <= max");
   if (n == 1 && v[1] != v[0]) g.fail(key, "a single point needs min = max");
-  first = v[0] * rig_detail::kMm;
-  pitch = n > 1 ? (v[1] - v[0]) / (n - 1) * rig_detail::kMm : 0.0;
+  first = v[0] / format::kMm;
+  pitch = n > 1 ? (v[1] - v[0]) / (n - 1) / format::kMm : 0.0;
 }
 
 }  // namespace
@@ -72,17 +72,17 @@ Plan parse_plan(std::string_view text, std::string_view source) {
     g.require({"origin_mm", "pitch_mm"});
     const std::vector<double> o = g.numbers("origin_mm", 2);
     const std::vector<double> d = g.numbers("pitch_mm", 2);
-    q.x0_m = o[0] * rig_detail::kMm;
-    q.y0_m = o[1] * rig_detail::kMm;
-    q.pitch_x_m = d[0] * rig_detail::kMm;
-    q.pitch_y_m = d[1] * rig_detail::kMm;
+    q.x0_m = o[0] / format::kMm;
+    q.y0_m = o[1] / format::kMm;
+    q.pitch_x_m = d[0] / format::kMm;
+    q.pitch_y_m = d[1] / format::kMm;
     if ((q.columns > 1 && !(d[0] > 0.0)) || (q.rows > 1 && !(d[1] > 0.0))) {
       g.fail("pitch_mm", "must be > 0 mm along every axis with more than one point");
     }
   }
   if (f.has("contact_E_star_Pa")) p.contact_E_star_Pa = f.positive("contact_E_star_Pa", 1e12, "Pa");
   if (f.has("approach_speed_mm_per_s")) {
-    p.approach_speed_m_per_s = f.positive("approach_speed_mm_per_s", 100.0, "mm/s") * rig_detail::kMm;
+    p.approach_speed_m_per_s = f.positive("approach_speed_mm_per_s", 100.0, "mm/s") / format::kMm;
   }
   return p;
 }

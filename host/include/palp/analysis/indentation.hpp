@@ -170,6 +170,24 @@ struct IndentationResult {
   std::vector<Value> k_tangent_N_per_m;  ///< chosen model's dF_o/ddelta at tangent_depths_m
 };
 
+/// The chosen model's fit (the lowest AIC), or nullptr when no model was fitted.
+const ModelFit* chosen_fit(const IndentationResult& r);
+
+/// Standard errors of the chosen model's derived quantities by the delta method through its
+/// scale parameter s (k or E*), which the model's force is proportional to: F = s g(delta)
+/// (the contact point's covariance with s is not included):
+///   delta0: s g(delta0) = F_0  ->  d delta0/ds = -F_0 / (s k_t(delta0))
+///   k_t at a fixed depth = s g'(delta)  ->  se = k_t se_s / s
+///   k_t at delta0: d/ds = g'(delta0) + s g''(delta0) d delta0/ds (g'' by central difference)
+/// E.g. Hertz: se(delta0) = 2/3 delta0 se_s / s, se(k_t(delta0)) = 2/3 k_t se_s / s; linear:
+/// se(delta0) = F_0 se_k / k^2, se(k_t) = se_k. Absent, with the reason, where the value is
+/// absent or no model (or no finite standard error of s) is there.
+struct DerivedSe {
+  Value delta0_m, k_tangent_at_delta0_N_per_m;
+  std::vector<Value> k_tangent_N_per_m;  ///< at IndentationResult::tangent_depths_m
+};
+DerivedSe derived_se(const IndentationResult& r);
+
 /// The whole analysis. Throws ConfigError on malformed input (size mismatch, NaN, bad params,
 /// too few contact samples); no contact (no sample with i >= I_c) gives a result whose values
 /// are absent with that reason, and a model that cannot be fitted is absent with its reason.

@@ -1,0 +1,197 @@
+// Field tables: a file format's keys defined once. Each entry names a key, the struct member it
+// holds, the scale from the member's SI unit to the file's lab unit, whether a file must have it
+// and, for numbers, the range a reader accepts. The writer (write_fields) and the reader
+// (read_fields) walk the same table, as protocol/include/palp/protocol/catalogue.hpp does for
+// the wire, so a key, its unit and its member cannot drift apart between the two.
+//
+//   const format::Field<Rig> kRigFields[] = {
+//       {"robot_uri", &Rig::robot_uri},
+//       {"safe_height_mm", &Rig::safe_height_m, format::kMm, format::Need::required, {0, 1000, true}},
+//       ...};
+//   format::write_fields(j, rig, kRigFields);          // j["safe_height_mm"] = safe_height_m * 1e3
+//   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
+//
+// A member is a double, an optional double (null in the file when absent), an int, a uint32, a
+// size_t, a bool, a string or a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]). The file
+// value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
+// reader takes a Source, the format's checked access to one JSON
+// object with its own error messages (JsonSource below for "where: \"key\" must be a number";
+// rig_detail::Fields for the rig and plan files' "file: key: problem" with ranges).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <optional>
+#include <span>
+#include <string>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "palp/error.hpp"
+#include "palp/pose.hpp"
+
+namespace palp::format {
+
+inline constexpr double kMm = 1e3;        ///< m -> mm
+inline constexpr double kNPerMm = 1e-3;   ///< N/m -> N/mm
+inline constexpr double kDeg = 180.0 / std::numbers::pi;  ///< rad -> deg
+
+enum class Need {
+  required,  ///< a file without the key (or with null) is an error
+  optional,  ///< absent or null: the member keeps its default (an optional double: none)
+  written,   ///< written only: derived again on reading (the reader skips it)
+};
+
+/// The values a reader accepts for a number: [lo, hi], or (0, hi] when positive.
+struct Range {
+  double lo = -INFINITY, hi = INFINITY;
+  bool positive = false;
+  const char* unit = "";
+};
+
+/// A file value back in SI: divided by a scale of 1 or more, else times its exact inverse (the
+/// N/mm scale 1e-3 is no exact double; its inverse 1e3 is).
+inline double from_file(double file_value, double scale) {
+  return scale >= 1.0 ? file_value / scale : file_value * (1.0 / scale);
+}
+
+template <class T>
+struct Field {
+  using Member = std::variant<double T::*, std::optional<double> T::*, int T::*, std::uint32_t T::*,
+                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*>;
+  const char* key;
+  Member member;
+  double scale = 1.0;  ///< file value = SI value x scale
+  Need need = Need::required;
+  Range range{};
+};
+
+/// A pose in the files' form: [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg].
+inline nlohmann::json pose_mm_deg(const Pose& p) {
+  return nlohmann::json::array(
+      {p.x_m * kMm, p.y_m * kMm, p.z_m * kMm, p.a_rad * kDeg, p.b_rad * kDeg, p.c_rad * kDeg});
+}
+inline Pose pose_of_mm_deg(const double (&v)[6]) {
+  return Pose{v[0] / kMm, v[1] / kMm, v[2] / kMm, v[3] / kDeg, v[4] / kDeg, v[5] / kDeg};
+}
+
+/// Every field of `table` into j (nlohmann::json, or ordered_json: the table's order is then the
+/// file's order).
+template <class Json, class T>
+void write_fields(Json& j, const T& v, std::span<const Field<T>> table) {
+  for (const Field<T>& f : table) {
+    std::visit(
+        [&](auto member) {
+          using M = std::remove_cvref_t<decltype(v.*member)>;
+          const M& x = v.*member;
+          if constexpr (std::is_same_v<M, double>) j[f.key] = x * f.scale;
+          else if constexpr (std::is_same_v<M, std::optional<double>>) j[f.key] = x ? Json(*x * f.scale) : Json(nullptr);
+          else if constexpr (std::is_same_v<M, Pose>) j[f.key] = pose_mm_deg(x);
+          else j[f.key] = x;
+        },
+        f.member);
+  }
+}
+template <class Json, class T, std::size_t N>
+void write_fields(Json& j, const T& v, const Field<T> (&table)[N]) {
+  write_fields(j, v, std::span<const Field<T>>(table));
+}
+
+/// Every field of `table` but the Need::written ones from `src`, a format's checked access to a
+/// JSON object: has(key) (present and not null), number(key, range), integer(key, range),
+/// boolean(key), text(key) and, where the format has poses, pose(key), each throwing its ConfigError when the key is absent or
+/// the value is not of its kind or range. An optional key that is absent is skipped.
+// GCC 12 sees the visit's store into an optional<double> member of a struct that holds none (the
+// alternative is instantiated for every table) as a write past its end: a false positive.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wstringop-overflow"
+#endif
+template <class Source, class T>
+void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
+  for (const Field<T>& f : table) {
+    if (f.need == Need::written) continue;
+    if (f.need == Need::optional && !src.has(f.key)) continue;
+    std::visit(
+        [&](auto member) {
+          using M = std::remove_cvref_t<decltype(v.*member)>;
+          M& x = v.*member;
+          if constexpr (std::is_same_v<M, double> || std::is_same_v<M, std::optional<double>>)
+            x = from_file(src.number(f.key, f.range), f.scale);
+          else if constexpr (std::is_same_v<M, int>) x = static_cast<int>(src.integer(f.key, f.range));
+          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t>)
+            x = static_cast<M>(src.integer(f.key, f.range));
+          else if constexpr (std::is_same_v<M, bool>) x = src.boolean(f.key);
+          else if constexpr (std::is_same_v<M, std::string>) x = src.text(f.key);
+          else if constexpr (requires { src.pose(f.key); }) x = src.pose(f.key);
+          else throw ConfigError(std::string(f.key) + ": this format's reader takes no poses");
+        },
+        f.member);
+  }
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+template <class Source, class T, std::size_t N>
+void read_fields(const Source& src, T& v, const Field<T> (&table)[N]) {
+  read_fields(src, v, std::span<const Field<T>>(table));
+}
+
+/// The trace and map files' Source: ConfigError "where: \"key\" must be a number" (an integer
+/// is any number, truncated, as those readers always took it); no ranges.
+class JsonSource {
+ public:
+  JsonSource(const nlohmann::json& j, std::string where) : j_(j), where_(std::move(where)) {}
+  bool has(const char* key) const {
+    const auto it = j_.find(key);
+    return it != j_.end() && !it->is_null();
+  }
+  double number(const char* key, const Range&) const {
+    const auto& v = at(key);
+    if (!v.is_number()) fail(key, "must be a number");
+    return v.get<double>();
+  }
+  long long integer(const char* key, const Range& r) const {
+    return static_cast<long long>(number(key, r));
+  }
+  bool boolean(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_boolean()) fail(key, "must be true or false");
+    return v.get<bool>();
+  }
+  std::string text(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_string()) fail(key, "must be a string");
+    return v.get<std::string>();
+  }
+  Pose pose(const char* key) const {
+    const auto& v = at(key);
+    const std::string what = where_ + ": " + key;
+    if (!v.is_array() || v.size() != 6)
+      throw ConfigError(what + ": expected [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]");
+    double x[6];
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (!v[k].is_number()) throw ConfigError(what + ": every element must be a number");
+      x[k] = v[k].get<double>();
+    }
+    return pose_of_mm_deg(x);
+  }
+  [[noreturn]] void fail(const char* key, const std::string& problem) const {
+    throw ConfigError(where_ + ": \"" + key + "\" " + problem);
+  }
+
+ private:
+  /// The value, or null when the key is absent.
+  const nlohmann::json& at(const char* key) const {
+    static const nlohmann::json null;
+    const auto it = j_.find(key);
+    return it == j_.end() ? null : *it;
+  }
+  const nlohmann::json& j_;
+  std::string where_;
+};
+
+}  // namespace palp::format
