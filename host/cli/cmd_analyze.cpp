@@ -98,10 +98,7 @@ Loaded load(const std::string& file, const an::IndentationParams& p) {
   Loaded l;
   l.rec = palp::read_recording(file);
   l.lines = data_row_lines(file);
-  const auto n = static_cast<Eigen::Index>(l.rec.size());
-  l.curve.z_m = Eigen::Map<const Eigen::VectorXd>(l.rec.z_mm.data(), n) * 1e-3;
-  l.curve.i_A = Eigen::Map<const Eigen::VectorXd>(l.rec.i_A.data(), n);
-  l.curve.rep = Eigen::Map<const Eigen::VectorXi>(l.rec.rep.data(), n);
+  l.curve = palp::curve_of(l.rec);  // with i_cmd_A when recorded: the staircase's plateaus
   // no contact: name the line with the highest current
   Eigen::Index top = 0;
   const double i_max = l.curve.i_A.maxCoeff(&top);

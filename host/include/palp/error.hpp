@@ -11,6 +11,10 @@
 //   ├── FaultError               the device's fault latch tripped while the SDK waited on it
 //   ├── ProtocolError            the device sent bytes the SDK cannot accept
 //   ├── RecordingError           a recording file is malformed (names the file, line, problem)
+//   ├── DataError                the data cannot give the result asked of it: too few samples,
+//   │                            no contact, a NaN sample, nothing to fit (the analysis throws
+//   │                            it; an experiment turns it into its analysis_reason, while a
+//   │                            bad setting stays a ConfigError and propagates)
 //   ├── RobotRejectedError       the robot bridge refused a command (its result code; for a bad
 //   │                            parameter the register's address and name)
 //   ├── RobotFaultError          the robot faulted or was safety-stopped during a motion
@@ -106,6 +110,11 @@ class RecordingError : public Error {
   std::string file_;
   std::size_t line_;
   std::string problem_;
+};
+
+class DataError : public Error {
+ public:
+  using Error::Error;
 };
 
 class RobotRejectedError : public Error {

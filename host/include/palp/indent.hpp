@@ -120,11 +120,13 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
                       const std::function<bool()>& cancelled = {});
 
 /// The analysis of a recording as indent() does it (pooled and per repetition, then the pressure
-/// channels); fills run.analysis, run.repetitions and run.pressure, or their reasons. Exposed
-/// for re-analysing a loaded run.
+/// channels); fills run.analysis, run.repetitions and run.pressure, or the reasons the data give
+/// none (a DataError's text). A bad analysis setting throws ConfigError. Exposed for
+/// re-analysing a loaded run.
 void analyze_run(IndentationRun& run);
 
-/// A recording's columns as the analysis' Curve (z in m, i in A, repetitions).
+/// A recording's columns as the analysis' Curve (z in m, i in A, repetitions; the commanded
+/// current when recorded, which marks the staircase's plateaus).
 analysis::Curve curve_of(const Recording& r);
 
 /// Puts the K_f(stroke) table of a recording's sidecar (its calibration's kf_table) and the

@@ -75,11 +75,16 @@ std::optional<double> ratio_of_variances(const RepData& r) {
   const int n = static_cast<int>(r.G.size());
   const int h = std::max(5, n / 20);  // w/2
   if (n < 2 * h + 1) return std::nullopt;
+  // prefix sums of G - G[0] and its square: each window's variance in O(1)
+  std::vector<double> S(n + 1, 0.0), S2(n + 1, 0.0);
+  for (int k = 0; k < n; ++k) {
+    const double g = r.G[k] - r.G[0];
+    S[k + 1] = S[k] + g;
+    S2[k + 1] = S2[k] + g * g;
+  }
   auto var = [&](int a, int b) {
-    double m = 0, m2 = 0;
-    for (int k = a; k < b; ++k) { m += r.G[k]; m2 += r.G[k] * r.G[k]; }
-    m /= (b - a);
-    return std::max(m2 / (b - a) - m * m, 1e-300);
+    const double m = (S[b] - S[a]) / (b - a);
+    return std::max((S2[b] - S2[a]) / (b - a) - m * m, 1e-300);
   };
   double best = -1;
   int arg = -1;
@@ -94,7 +99,10 @@ std::optional<double> ratio_of_variances(const RepData& r) {
 }  // namespace
 
 std::vector<ContactEstimate> estimate_contact(const Curve& c, const IndentationParams& p) {
-  const detail::FitData d = detail::collect_loading(c, p);
+  return detail::estimate_contact(detail::collect_loading(c, p), p);
+}
+
+std::vector<ContactEstimate> detail::estimate_contact(const FitData& d, const IndentationParams& p) {
   if (!d.has_baseline)
     return {{"first_sample_at_Ic", median(d.first_contact_z_m, "first_sample_at_Ic")}};
   std::vector<RepData> reps;

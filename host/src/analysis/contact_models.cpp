@@ -36,10 +36,11 @@ double sneddon_u(double target) {
   double lo = target < 1.0 ? std::sqrt(target) * 0.99 : target;
   double hi = target + 1.0;
   // u tanh(u) >= tanh(1) u^2 for u <= 1 and >= tanh(1) u for u >= 1.
-  const double tanh1 = std::tanh(1.0);
+  constexpr double tanh1 = 0.76159415595576489;
   hi = std::min(hi, std::max(std::sqrt(target / tanh1), target / tanh1) * 1.01);
   lo = std::min(lo, hi);
-  double u = target < 1.0 ? std::sqrt(target) : target + 0.5;
+  // start: u tanh u = u^2 - u^4/3 + ... inverted, u^2 ~ t + t^2/3 for small t
+  double u = target < 1.0 ? std::sqrt(target * (1.0 + target / 3.0)) : target + 0.5;
   u = std::clamp(u, lo, hi);
   for (int it = 0; it < 100; ++it) {
     const double th = std::tanh(u);
@@ -49,7 +50,9 @@ double sneddon_u(double target) {
     const double dg = th + u * (1.0 - th * th);
     double next = u - g / dg;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - u) <= 2e-16 * u) { u = next; break; }
+    // a Newton step below 1e-9 u leaves an error of order its square: full precision (waiting
+    // for a zero step instead can bounce between neighbouring doubles for dozens of steps)
+    if (std::abs(next - u) <= 1e-9 * u) { u = next; break; }
     u = next;
   }
   return u;
@@ -82,6 +85,14 @@ double sneddon_force_N(double depth_m, double Estar_Pa, double radius_m) {
 
 double sneddon_stiffness_N_per_m(double depth_m, double Estar_Pa, double radius_m) {
   return 2.0 * Estar_Pa * sneddon_contact_radius_m(depth_m, radius_m);
+}
+
+ForceStiffness sneddon_force_stiffness(double depth_m, double Estar_Pa, double radius_m) {
+  if (!(depth_m > 0.0)) return {0.0, 0.0};
+  const double u = sneddon_u(depth_m / radius_m);
+  const double t = std::tanh(u);
+  const double shape = t < 0.2 ? sneddon_shape(t) : (1.0 + t * t) * u - t;
+  return {Estar_Pa * radius_m * radius_m * shape, 2.0 * Estar_Pa * radius_m * t};
 }
 
 double thickness_factor(double depth_m, double radius_m, const Thickness& t) {

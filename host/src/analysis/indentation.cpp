@@ -30,11 +30,16 @@ void validate(const Curve& c, const IndentationParams& p) {
   if (c.rep.size() != 0 && c.rep.size() != c.z_m.size())
     throw ConfigError("indentation curve: rep has " + std::to_string(c.rep.size()) +
                       " entries for " + std::to_string(c.z_m.size()) + " samples");
+  if (c.i_cmd_A.size() != 0 && c.i_cmd_A.size() != c.z_m.size())
+    throw ConfigError("indentation curve: i_cmd_A has " + std::to_string(c.i_cmd_A.size()) +
+                      " entries for " + std::to_string(c.z_m.size()) + " samples");
   for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
-    if (!std::isfinite(c.z_m[k]) || !std::isfinite(c.i_A[k]))
-      throw ConfigError("indentation curve: sample " + std::to_string(k) +
-                        " is not finite (z_m = " + detail::number_text(c.z_m[k]) + ", i_A = " + detail::number_text(c.i_A[k]) +
-                        "); remove or repair it before the analysis");
+    if (!std::isfinite(c.z_m[k]) || !std::isfinite(c.i_A[k]) ||
+        (c.i_cmd_A.size() != 0 && !std::isfinite(c.i_cmd_A[k])))
+      throw DataError("indentation curve: sample " + std::to_string(k) +
+                      " is not finite (z_m = " + detail::number_text(c.z_m[k]) + ", i_A = " + detail::number_text(c.i_A[k]) +
+                      (c.i_cmd_A.size() != 0 ? ", i_cmd_A = " + detail::number_text(c.i_cmd_A[k]) : std::string()) +
+                      "); remove or repair it before the analysis");
   }
   const auto& tx = p.kf_table_stroke_m;
   const auto& tk = p.kf_table_N_per_A;
@@ -88,6 +93,50 @@ Branches loading_branch(const Curve& c) {
   return b;
 }
 
+const char* fit_on_name(FitOn f) { return f == FitOn::plateaus ? "plateaus" : "samples"; }
+
+namespace {
+
+// The fit points of the loading samples idx (rep_of: their repetition ordinals): every sample,
+// or one point per run of equal commanded current within a repetition.
+detail::FitPoints fit_points(const Curve& c, const detail::FitData& d, const std::vector<int>& idx,
+                             const IndentationParams& p) {
+  detail::FitPoints f;
+  const auto n = d.z_m.size();
+  if (p.fit_on == FitOn::samples || c.i_cmd_A.size() == 0) {
+    f.z_m = d.z_m;
+    f.F_N = d.F_N;
+    f.w = Eigen::VectorXd::Ones(n);
+    f.szz = f.sff = f.szf = Eigen::VectorXd::Zero(n);
+    return f;
+  }
+  f.on = FitOn::plateaus;
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // [begin, end) in the loading samples
+  for (Eigen::Index k = 0, b = 0; k <= n; ++k) {
+    if (k == n || d.rep_of[static_cast<std::size_t>(k)] != d.rep_of[static_cast<std::size_t>(b)] ||
+        c.i_cmd_A[idx[static_cast<std::size_t>(k)]] != c.i_cmd_A[idx[static_cast<std::size_t>(b)]]) {
+      if (k > b) runs.emplace_back(b, k);
+      b = k;
+    }
+  }
+  const auto m = static_cast<Eigen::Index>(runs.size());
+  for (Eigen::VectorXd* v : {&f.z_m, &f.F_N, &f.w, &f.szz, &f.sff, &f.szf}) v->resize(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const auto [b, e] = runs[static_cast<std::size_t>(j)];
+    const auto z = d.z_m.segment(b, e - b).array();
+    const auto F = d.F_N.segment(b, e - b).array();
+    f.w[j] = static_cast<double>(e - b);
+    f.z_m[j] = z.mean();
+    f.F_N[j] = F.mean();
+    f.szz[j] = (z - f.z_m[j]).square().sum();
+    f.sff[j] = (F - f.F_N[j]).square().sum();
+    f.szf[j] = ((z - f.z_m[j]) * (F - f.F_N[j])).sum();
+  }
+  return f;
+}
+
+}  // namespace
+
 detail::FitData detail::collect_loading(const Curve& c, const IndentationParams& p) {
   validate(c, p);
   FitData d;
@@ -118,15 +167,16 @@ detail::FitData detail::collect_loading(const Curve& c, const IndentationParams&
     d.z_m[static_cast<Eigen::Index>(k)] = c.z_m[idx[k]];
     d.F_N[static_cast<Eigen::Index>(k)] = p.force_constant_at(c.z_m[idx[k]]) * (c.i_A[idx[k]] - p.contact_current_A);
   }
+  d.points = fit_points(c, d, idx, p);
   return d;
 }
 
 void detail::require_contact(const FitData& d, const IndentationParams& p) {
   if (d.n_contact == 0)
-    throw ConfigError("no contact: no loading sample reaches the contact current I_c = " +
+    throw DataError("no contact: no loading sample reaches the contact current I_c = " +
                       detail::number_text(p.contact_current_A) + " A (highest current " + detail::number_text(d.max_i_A) + " A)");
   if (d.n_contact < p.min_points)
-    throw ConfigError("too few points: " + std::to_string(d.n_contact) +
+    throw DataError("too few points: " + std::to_string(d.n_contact) +
                       " loading samples at or above I_c = " + detail::number_text(p.contact_current_A) +
                       " A, the fits need at least " + std::to_string(p.min_points));
 }
@@ -200,9 +250,11 @@ IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p
     res.k_tangent_N_per_m.assign(p.tangent_depths_m.size(), Value::absent(why));
     return res;
   };
+  res.fitted_on = d.points.on;
+  res.n_fit_points = static_cast<int>(d.points.z_m.size());
   try {
     detail::require_contact(d, p);
-  } catch (const ConfigError& e) {
+  } catch (const DataError& e) {
     if (d.n_contact == 0) return all_absent(e.what());
     throw;  // too few points: the recording is unusable, say so
   }
@@ -210,18 +262,18 @@ IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p
   auto attempt = [](std::optional<ModelFit>& out, std::string& why, auto&& fit) {
     try {
       out = fit();
-    } catch (const ConfigError& e) {
+    } catch (const DataError& e) {
       why = e.what();
     }
   };
-  attempt(res.linear, res.linear_reason, [&] { return fit_linear(c, p); });
-  attempt(res.hertz, res.hertz_reason, [&] { return fit_hertz(c, p); });
+  attempt(res.linear, res.linear_reason, [&] { return detail::fit_model(Model::linear, d, p); });
+  attempt(res.hertz, res.hertz_reason, [&] { return detail::fit_model(Model::hertz, d, p); });
   if (res.hertz) {
-    attempt(res.sneddon, res.sneddon_reason, [&] { return detail::fit_sneddon_from(c, p, *res.hertz); });
+    attempt(res.sneddon, res.sneddon_reason, [&] { return detail::fit_model(Model::sneddon, d, p, &*res.hertz); });
   } else {
     res.sneddon_reason = "the Sneddon fit starts from the Hertz fit, which failed: " + res.hertz_reason;
   }
-  res.contact_estimates = estimate_contact(c, p);
+  res.contact_estimates = detail::estimate_contact(d, p);
   const ModelFit* best = nullptr;
   for (const auto* m : {&res.linear, &res.hertz, &res.sneddon})
     if (*m && (!best || (*m)->aic < best->aic)) best = &**m;
@@ -289,7 +341,7 @@ RepetitionStats repetition_mean_sd(const Curve& c, const IndentationParams& p, d
   RepetitionStats s{grid, Eigen::VectorXd::Zero(G), Eigen::VectorXd::Zero(G), Eigen::VectorXi::Zero(G)};
   Eigen::VectorXd sum2 = Eigen::VectorXd::Zero(G);
   for (auto [begin, end] : detail::repetitions(c)) {
-    Curve one{c.z_m.segment(begin, end - begin), c.i_A.segment(begin, end - begin), {}};
+    Curve one{c.z_m.segment(begin, end - begin), c.i_A.segment(begin, end - begin), {}, {}};
     std::vector<std::pair<double, double>> pts;  // (depth, F_o), sorted by depth
     const Eigen::VectorXd Fo = object_force_N(one, p, contact_z_m);
     for (int k : loading_branch(one).loading) pts.emplace_back(one.z_m[k] - contact_z_m, Fo[k]);

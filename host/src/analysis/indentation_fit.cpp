@@ -3,6 +3,8 @@
 // Start: a profile over z_c on a grid (for each candidate z_c the model is linear in its
 // stiffness parameter and offset, solved in closed form); then Levenberg-Marquardt on all
 // parameters. The Sneddon fit starts from the Hertz solution. Deterministic, no state.
+// Every point carries a weight (1 for a sample, the sample count for a plateau mean): the
+// residuals are sqrt(w) (F - model).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -29,16 +31,24 @@ double unit_force(Model m, double depth, double R, const std::optional<Thickness
   return t ? f * thickness_factor(depth, R, *t) : f;
 }
 
-// Its derivative with respect to depth (for the analytic Jacobian).
-double unit_stiffness(Model m, double depth, double R, const std::optional<Thickness>& t) {
-  if (!(depth > 0.0)) return 0.0;
-  double f = 0.0, df = 0.0;
+// It and its derivative with respect to depth (for the analytic Jacobian), from one Sneddon
+// solve.
+ForceStiffness unit_law(Model m, double depth, double R, const std::optional<Thickness>& t) {
+  if (!(depth > 0.0)) return {};
+  ForceStiffness u;
   switch (m) {
-    case Model::linear: return 1.0;
-    case Model::hertz: f = hertz_force_N(depth, 1.0, R); df = hertz_stiffness_N_per_m(depth, 1.0, R); break;
-    case Model::sneddon: f = sneddon_force_N(depth, 1.0, R); df = sneddon_stiffness_N_per_m(depth, 1.0, R); break;
+    case Model::linear: return {depth, 1.0};
+    case Model::hertz: u = {hertz_force_N(depth, 1.0, R), hertz_stiffness_N_per_m(depth, 1.0, R)}; break;
+    case Model::sneddon: u = sneddon_force_stiffness(depth, 1.0, R); break;
   }
-  return t ? df * thickness_factor(depth, R, *t) + f * thickness_factor_derivative_per_m(depth, R, *t) : df;
+  if (!t) return u;
+  return {u.force_N * thickness_factor(depth, R, *t),
+          u.stiffness_N_per_m * thickness_factor(depth, R, *t) +
+              u.force_N * thickness_factor_derivative_per_m(depth, R, *t)};
+}
+
+double unit_stiffness(Model m, double depth, double R, const std::optional<Thickness>& t) {
+  return unit_law(m, depth, R, t).stiffness_N_per_m;
 }
 
 struct Setup {
@@ -46,7 +56,8 @@ struct Setup {
   bool offset;
   double kv, R;
   std::optional<Thickness> thickness;
-  const FitData* d;
+  const detail::FitPoints* d;
+  Eigen::VectorXd sqrt_w;
 };
 
 void residuals(const Setup& s, const Eigen::VectorXd& q, Eigen::VectorXd& r) {
@@ -56,49 +67,45 @@ void residuals(const Setup& s, const Eigen::VectorXd& q, Eigen::VectorXd& r) {
   r.resize(z.size());
   for (Eigen::Index k = 0; k < z.size(); ++k) {
     const double delta = z[k] - zc;
-    r[k] = F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c);
+    r[k] = s.sqrt_w[k] * (F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c));
   }
 }
 
-// dr/dtheta = -g(delta), dr/dz_c = k_v + theta g'(delta), dr/dc = -1.
+// dr/dtheta = -g(delta), dr/dz_c = k_v + theta g'(delta), dr/dc = -1 (each times sqrt(w)).
 void jacobian(const Setup& s, const Eigen::VectorXd& q, Eigen::MatrixXd& J) {
   const auto& z = s.d->z_m;
   for (Eigen::Index k = 0; k < z.size(); ++k) {
-    const double delta = z[k] - q[1];
-    J(k, 0) = -unit_force(s.model, delta, s.R, s.thickness);
-    J(k, 1) = s.kv + q[0] * unit_stiffness(s.model, delta, s.R, s.thickness);
-    if (s.offset) J(k, 2) = -1.0;
+    const ForceStiffness u = unit_law(s.model, z[k] - q[1], s.R, s.thickness);
+    J(k, 0) = -s.sqrt_w[k] * u.force_N;
+    J(k, 1) = s.sqrt_w[k] * (s.kv + q[0] * u.stiffness_N_per_m);
+    if (s.offset) J(k, 2) = -s.sqrt_w[k];
   }
 }
 
-// Closed-form (theta, c) for a fixed z_c; returns rss.
+// Closed-form (theta, c) for a fixed z_c; returns the weighted rss.
 double profile(const Setup& s, double zc, double& theta, double& c) {
   const auto& z = s.d->z_m;
   const auto& F = s.d->F_N;
+  const auto& w = s.d->w;
   const Eigen::Index n = z.size();
-  double sg = 0, sy = 0, sgg = 0, sgy = 0, syy = 0;
+  double sw = 0, sg = 0, sy = 0, sgg = 0, sgy = 0, syy = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
     const double delta = z[k] - zc;
     const double g = unit_force(s.model, delta, s.R, s.thickness);
     const double y = F[k] - s.kv * delta;
-    sg += g; sy += y; sgg += g * g; sgy += g * y; syy += y * y;
+    sw += w[k]; sg += w[k] * g; sy += w[k] * y; sgg += w[k] * g * g; sgy += w[k] * g * y; syy += w[k] * y * y;
   }
   if (s.offset) {
-    const double det = n * sgg - sg * sg;
-    if (!(det > 0.0)) { theta = 0; c = sy / n; return syy - sy * sy / n; }
-    theta = (n * sgy - sg * sy) / det;
-    c = (sy - theta * sg) / n;
+    const double det = sw * sgg - sg * sg;
+    if (!(det > 0.0)) { theta = 0; c = sy / sw; return syy - sy * sy / sw; }
+    theta = (sw * sgy - sg * sy) / det;
+    c = (sy - theta * sg) / sw;
   } else {
     c = 0.0;
     theta = sgg > 0.0 ? sgy / sgg : 0.0;
   }
-  double rss = 0.0;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double delta = z[k] - zc;
-    const double e = F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c);
-    rss += e * e;
-  }
-  return rss;
+  // the least-squares optimum's rss in closed form (no second pass over the model)
+  return std::max(syy - theta * sgy - c * sy, 0.0);
 }
 
 struct Range { double lo, hi; std::string method; };
@@ -110,7 +117,7 @@ struct Range { double lo, hi; std::string method; };
 constexpr int kMaxFitIterations = 60;
 
 Range contact_range(const FitData& d) {
-  const double zmin = d.z_m.minCoeff(), zmax = d.z_m.maxCoeff();
+  const double zmin = d.points.z_m.minCoeff(), zmax = d.points.z_m.maxCoeff();
   const double span = std::max(zmax - zmin, 1e-9);
   if (d.has_baseline) {
     return {zmin, zmax - 0.1 * span,
@@ -128,18 +135,28 @@ ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationPa
   m.names = {s.model == Model::linear ? "k_N_per_m" : "Estar_Pa", "contact_z_m"};
   if (s.offset) m.names.push_back("offset_N");
   m.params = lm.p;
-  m.se = detail::standard_errors(lm.J, lm.rss);
-  m.rss = lm.rss;
-  m.n = static_cast<int>(lm.r.size());
+  const detail::FitPoints& pts = *s.d;
+  // the samples' scatter inside the plateaus about the model's local slope (0 on samples)
+  Eigen::VectorXd slope(pts.z_m.size());
+  for (Eigen::Index k = 0; k < slope.size(); ++k)
+    slope[k] = s.kv + lm.p[0] * unit_stiffness(s.model, pts.z_m[k] - lm.p[1], s.R, s.thickness);
+  const double rss = lm.rss + pts.scatter(slope);
+  m.n = static_cast<int>(std::lround(pts.n_samples()));
+  m.n_points = static_cast<int>(pts.z_m.size());
+  m.se = detail::standard_errors(lm.J, rss, m.n);
+  m.rss = rss;
   const int np = static_cast<int>(lm.p.size());
-  m.aic = m.n * std::log(std::max(lm.rss, 1e-300) / m.n) + 2.0 * np;
-  m.rms_residual_N = m.n > np ? std::sqrt(lm.rss / (m.n - np)) : 0.0;
+  m.aic = m.n * std::log(std::max(rss, 1e-300) / m.n) + 2.0 * np;
+  m.rms_residual_N = m.n > np ? std::sqrt(rss / (m.n - np)) : 0.0;
   if (p.force_noise_N && *p.force_noise_N > 0.0)
     m.reduced_chi2 = m.rms_residual_N * m.rms_residual_N / (*p.force_noise_N * *p.force_noise_N);
-  // R^2 of the object force F_o = F - k_v (z - z_c) (residuals are the same as for F).
-  const Eigen::VectorXd Fo = s.d->F_N - s.kv * (s.d->z_m.array() - lm.p[1]).matrix();
-  const double tss = (Fo.array() - Fo.mean()).square().sum();
-  m.r2 = tss > 0.0 ? 1.0 - lm.rss / tss : 0.0;
+  // R^2 of the object force F_o = F - k_v (z - z_c) (residuals are the same as for F), its
+  // total sum of squares over the samples from the points' means and scatter
+  const Eigen::ArrayXd Fo = pts.F_N.array() - s.kv * (pts.z_m.array() - lm.p[1]);
+  const double mean = (pts.w.array() * Fo).sum() / pts.w.sum();
+  const double tss = (pts.w.array() * (Fo - mean).square()).sum() +
+                     (pts.sff.array() - 2.0 * s.kv * pts.szf.array() + s.kv * s.kv * pts.szz.array()).sum();
+  m.r2 = tss > 0.0 ? 1.0 - rss / tss : 0.0;
   m.contact_z_m = lm.p[1];
   m.contact_z_se_m = m.se[1];
   if (s.model == Model::linear) {
@@ -157,12 +174,16 @@ ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationPa
   return m;
 }
 
-ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
-                   const ModelFit* start) {
-  const FitData d = detail::collect_loading(c, p);
-  detail::require_contact(d, p);
+}  // namespace
+
+double detail::FitPoints::scatter(const Eigen::VectorXd& slope) const {
+  return (sff.array() - 2.0 * slope.array() * szf.array() + slope.array().square() * szz.array()).sum();
+}
+
+ModelFit detail::fit_model(Model model, const FitData& d, const IndentationParams& p,
+                           const ModelFit* start) {
   Setup s{model, d.has_baseline && model != Model::linear, p.spring_N_per_m, p.tip_radius_m,
-          model == Model::linear ? std::nullopt : p.thickness, &d};
+          model == Model::linear ? std::nullopt : p.thickness, &d.points, d.points.w.cwiseSqrt()};
   const Range range = contact_range(d);
   double theta = 0.0, off = 0.0, zc = 0.0;
   if (start) {
@@ -187,7 +208,7 @@ ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
       hi = std::min(range.hi, zc + step);
     }
     if (!(theta > 0.0)) {
-      throw ConfigError(std::string("cannot start the ") + model_name(model) +
+      throw DataError(std::string("cannot start the ") + model_name(model) +
                         " fit: no contact point in the data range gives a positive stiffness");
     }
   }
@@ -200,21 +221,19 @@ ModelFit fit_model(Model model, const Curve& c, const IndentationParams& p,
   lo[1] = range.lo;
   hi[0] = INFINITY;
   hi[1] = range.hi;
-  const double span = std::max(d.z_m.maxCoeff() - d.z_m.minCoeff(), 1e-6);
+  const double span = std::max(d.points.z_m.maxCoeff() - d.points.z_m.minCoeff(), 1e-6);
   typ[0] = std::abs(theta) + 1e-12;
   typ[1] = span;
   if (s.offset) {
     p0[2] = off; lo[2] = -INFINITY; hi[2] = INFINITY;
-    typ[2] = std::max(d.F_N.cwiseAbs().maxCoeff(), 1e-6);
+    typ[2] = std::max(d.points.F_N.cwiseAbs().maxCoeff(), 1e-6);
   }
   const auto lm = detail::levenberg_marquardt(
-      [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, d.z_m.size(), p0,
+      [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, d.points.z_m.size(), p0,
       lo, hi, typ, [&](const Eigen::VectorXd& q, Eigen::MatrixXd& J) { jacobian(s, q, J); },
       kMaxFitIterations);
   return finish(s, lm, p, start ? start->contact_method : range.method);
 }
-
-}  // namespace
 
 const char* model_name(Model m) {
   switch (m) {
@@ -231,36 +250,29 @@ double ModelFit::force_N(double depth_m) const {
 
 double ModelFit::stiffness_N_per_m(double depth_m) const {
   if (!(depth_m > 0.0)) return model == Model::linear ? params[0] : 0.0;
-  double f = 0.0, df = 0.0;
-  switch (model) {
-    case Model::linear: return params[0];
-    case Model::hertz:
-      f = hertz_force_N(depth_m, params[0], radius_m);
-      df = hertz_stiffness_N_per_m(depth_m, params[0], radius_m);
-      break;
-    case Model::sneddon:
-      f = sneddon_force_N(depth_m, params[0], radius_m);
-      df = sneddon_stiffness_N_per_m(depth_m, params[0], radius_m);
-      break;
-  }
-  if (!thickness) return df;
-  return df * thickness_factor(depth_m, radius_m, *thickness) +
-         f * thickness_factor_derivative_per_m(depth_m, radius_m, *thickness);
+  return params[0] * unit_stiffness(model, depth_m, radius_m, thickness);
 }
+
+namespace {
+
+detail::FitData collect_with_contact(const Curve& c, const IndentationParams& p) {
+  detail::FitData d = detail::collect_loading(c, p);
+  detail::require_contact(d, p);
+  return d;
+}
+
+}  // namespace
 
 ModelFit fit_linear(const Curve& c, const IndentationParams& p) {
-  return fit_model(Model::linear, c, p, nullptr);
+  return detail::fit_model(Model::linear, collect_with_contact(c, p), p);
 }
 ModelFit fit_hertz(const Curve& c, const IndentationParams& p) {
-  return fit_model(Model::hertz, c, p, nullptr);
+  return detail::fit_model(Model::hertz, collect_with_contact(c, p), p);
 }
 ModelFit fit_sneddon(const Curve& c, const IndentationParams& p) {
-  const ModelFit h = fit_hertz(c, p);
-  return fit_model(Model::sneddon, c, p, &h);
-}
-
-ModelFit detail::fit_sneddon_from(const Curve& c, const IndentationParams& p, const ModelFit& hertz) {
-  return fit_model(Model::sneddon, c, p, &hertz);
+  const detail::FitData d = collect_with_contact(c, p);
+  const ModelFit h = detail::fit_model(Model::hertz, d, p);
+  return detail::fit_model(Model::sneddon, d, p, &h);
 }
 
 }  // namespace palp::analysis

@@ -9,9 +9,22 @@
 
 namespace palp::analysis::detail {
 
+/// The points a fit runs on: samples (w = 1, no scatter) or plateau means (w = sample count,
+/// with the centred sums of squares of the plateau's samples, for the RSS over every sample).
+struct FitPoints {
+  Eigen::VectorXd z_m, F_N, w;
+  Eigen::VectorXd szz, sff, szf;  ///< sum (z - zbar)^2, (F - Fbar)^2, (z - zbar)(F - Fbar)
+  FitOn on = FitOn::samples;
+  double n_samples() const { return w.sum(); }
+  /// The samples' squared residuals inside the plateaus about a line of this slope through
+  /// each plateau's mean, given the model's slope dF/dz at each point.
+  double scatter(const Eigen::VectorXd& slope) const;
+};
+
 /// Loading samples ready for a fit: position and coil force F = K_f (i - I_c).
 struct FitData {
   Eigen::VectorXd z_m, F_N;
+  FitPoints points;                  ///< what the fits run on (see IndentationParams::fit_on)
   std::vector<int> rep_of;           ///< repetition ordinal (0..) of each loading sample
   std::vector<double> first_contact_z_m;  ///< per repetition: z of the first sample at i >= I_c
                                           ///< (NaN-free: repetitions without one are skipped)
@@ -31,9 +44,14 @@ std::vector<std::pair<int, int>> repetitions(const Curve& c);
 
 /// Validates and collects; does not check for contact (callers decide: throw or reason).
 FitData collect_loading(const Curve& c, const IndentationParams& p);
-/// Throws ConfigError when there is no contact or too few contact samples.
+/// Throws DataError when there is no contact or too few contact samples.
 void require_contact(const FitData& d, const IndentationParams& p);
-/// The Sneddon fit started from a Hertz fit of the same data (saves refitting Hertz).
-ModelFit fit_sneddon_from(const Curve& c, const IndentationParams& p, const ModelFit& hertz);
+/// A model fit of collected data (require_contact passed); start: a fit to begin from (the
+/// Sneddon fit from the Hertz one), else the profile over z_c. Throws DataError when no
+/// contact point gives a positive stiffness.
+ModelFit fit_model(Model model, const FitData& d, const IndentationParams& p,
+                   const ModelFit* start = nullptr);
+/// estimate_contact on collected data.
+std::vector<ContactEstimate> estimate_contact(const FitData& d, const IndentationParams& p);
 
 }  // namespace palp::analysis::detail

@@ -94,8 +94,9 @@ LsqResult levenberg_marquardt(const ResidualFn& f, Eigen::Index n, const Eigen::
   return out;
 }
 
-Eigen::VectorXd standard_errors(const Eigen::MatrixXd& J, double rss) {
-  const Eigen::Index n = J.rows(), p = J.cols();
+Eigen::VectorXd standard_errors(const Eigen::MatrixXd& J, double rss, Eigen::Index n) {
+  if (n < 0) n = J.rows();
+  const Eigen::Index p = J.cols();
   Eigen::VectorXd se = Eigen::VectorXd::Zero(p);
   if (n <= p) return se;
   // Scale columns so that the inverse is well conditioned whatever the units.

@@ -29,6 +29,7 @@ LsqResult levenberg_marquardt(const ResidualFn& residuals, Eigen::Index n_residu
                               const JacobianFn& jacobian = {}, int max_iterations = 200);
 
 /// Standard errors sqrt(diag((J^T J)^-1) * rss / (n - p)); 0 where not identifiable.
-Eigen::VectorXd standard_errors(const Eigen::MatrixXd& J, double rss);
+/// n: the observations (J's rows unless given: a fit on weighted means counts their samples).
+Eigen::VectorXd standard_errors(const Eigen::MatrixXd& J, double rss, Eigen::Index n = -1);
 
 }  // namespace palp::analysis::detail

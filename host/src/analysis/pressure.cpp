@@ -117,7 +117,7 @@ PressureResult analyze_pressure(const Curve& c, const Eigen::MatrixXd& p_Pa,
   if (p_Pa.rows() != c.z_m.size())
     throw ConfigError("pressure: " + std::to_string(p_Pa.rows()) + " pressure rows for " +
                       std::to_string(c.z_m.size()) + " samples");
-  if (!p_Pa.allFinite()) throw ConfigError("pressure: a pressure is NaN or infinite");
+  if (!p_Pa.allFinite()) throw DataError("pressure: a pressure is NaN or infinite");
   if (!std::isfinite(contact_z_m)) throw ConfigError("pressure: the contact point is not finite");
   const Eigen::VectorXd Fo = object_force_N(c, p, contact_z_m);
 
@@ -139,7 +139,7 @@ PressureResult analyze_pressure(const Curve& c, const Eigen::MatrixXd& p_Pa,
     reps.push_back(std::move(r));
   }
   if (res.n_loading == 0)
-    throw ConfigError("no contact: no loading sample reaches the contact current I_c = " +
+    throw DataError("no contact: no loading sample reaches the contact current I_c = " +
                       detail::number_text(p.contact_current_A) + " A");
 
   auto gather = [&](const std::vector<int>& idx, Eigen::Index col, Eigen::VectorXd& F, Eigen::VectorXd& P) {

@@ -16,7 +16,8 @@ std::vector<Curve> split(const Curve& c) {
   Eigen::Index b = 0;
   for (Eigen::Index k = 1; k <= n; ++k) {
     if (k == n || (c.rep.size() != 0 && c.rep[k] != c.rep[b])) {
-      Curve one{c.z_m.segment(b, k - b), c.i_A.segment(b, k - b), {}};
+      Curve one{c.z_m.segment(b, k - b), c.i_A.segment(b, k - b), {},
+                c.i_cmd_A.size() != 0 ? Eigen::VectorXd(c.i_cmd_A.segment(b, k - b)) : Eigen::VectorXd()};
       out.push_back(std::move(one));
       b = k;
     }
@@ -68,7 +69,7 @@ RepetitionSummary analyze_repetitions(const Curve& c, const IndentationParams& p
   for (const Curve& one : split(c)) {
     try {
       s.per_rep.push_back(analyze_indentation(one, p));
-    } catch (const ConfigError& e) {  // e.g. too few points in this repetition: say so, go on
+    } catch (const DataError& e) {  // e.g. too few points in this repetition: say so, go on
       IndentationResult r;
       r.fit_reason = e.what();
       r.F0_N = p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A);

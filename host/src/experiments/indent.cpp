@@ -118,6 +118,8 @@ analysis::Curve curve_of(const Recording& r) {
     c.i_A[k] = r.i_A[u];
     c.rep[k] = r.rep[u];
   }
+  if (r.i_cmd_A && r.i_cmd_A->size() == r.size())  // the plateaus of the staircase
+    c.i_cmd_A = Eigen::Map<const Eigen::VectorXd>(r.i_cmd_A->data(), n);
   return c;
 }
 
@@ -142,7 +144,7 @@ void analyze_run(IndentationRun& run) {
     } else {
       run.analysis = analysis::analyze_indentation(c, run.settings.analysis);
     }
-  } catch (const ConfigError& e) {
+  } catch (const DataError& e) {  // a bad setting is no data problem: it propagates
     run.analysis.reset();
     run.repetitions.reset();
     run.analysis_reason = e.what();
@@ -165,7 +167,7 @@ void analyze_run(IndentationRun& run) {
     P.col(ch) = Eigen::Map<const Eigen::VectorXd>((*r.p_Pa[static_cast<std::size_t>(ch)]).data(), P.rows());
   try {
     run.pressure = analysis::analyze_pressure(c, P, run.settings.analysis, *run.analysis->contact_z_m.value);
-  } catch (const ConfigError& e) {
+  } catch (const DataError& e) {
     run.pressure_reason = e.what();
   }
 }

@@ -201,17 +201,17 @@ TEST(AnalysisIndentation, RepetitionMeanAndSdOnCommonDepthGrid) {
   EXPECT_FALSE(mean_sd({Value::of(1.0)}).sd);
 }
 
-TEST(AnalysisIndentation, TooFewPointsThrowsConfigErrorNamingTheCount) {
+TEST(AnalysisIndentation, TooFewPointsThrowsDataErrorNamingTheCount) {
   Curve c;
   c.z_m = Eigen::VectorXd::LinSpaced(5, 0.0, 1e-3);
   c.i_A = Eigen::VectorXd::LinSpaced(5, 0.5, 0.6);
   try {
     fit_hertz(c, {});
     FAIL() << "no throw";
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_NE(std::string(e.what()).find("too few points: 5"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(analyze_indentation(c), palp::ConfigError);
+  EXPECT_THROW(analyze_indentation(c), palp::DataError);
 }
 
 TEST(AnalysisIndentation, NoContactGivesAbsentValuesWithReasonAndFitsThrow) {
@@ -225,25 +225,36 @@ TEST(AnalysisIndentation, NoContactGivesAbsentValuesWithReasonAndFitsThrow) {
   EXPECT_FALSE(r.k_fd_N_per_m);
   ASSERT_EQ(r.k_tangent_N_per_m.size(), 4u);
   EXPECT_FALSE(r.k_tangent_N_per_m[0]);
-  EXPECT_THROW(fit_linear(c, {}), palp::ConfigError);
+  EXPECT_THROW(fit_linear(c, {}), palp::DataError);
 }
 
-TEST(AnalysisIndentation, NaNOrMismatchedInputThrowsConfigError) {
+TEST(AnalysisIndentation, NaNSampleIsADataErrorMismatchedSizesAndBadParamsAConfigError) {
   Curve c = synth_curve(linear_spec(0.0, 0.0));
   c.i_A[17] = std::numeric_limits<double>::quiet_NaN();
   try {
     analyze_indentation(c);
     FAIL() << "no throw";
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_NE(std::string(e.what()).find("sample 17 is not finite"), std::string::npos) << e.what();
   }
   Curve m;
   m.z_m = Eigen::VectorXd::Zero(20);
   m.i_A = Eigen::VectorXd::Zero(19);
   EXPECT_THROW(analyze_indentation(m), palp::ConfigError);
+  Curve cmd = synth_curve(linear_spec(0.0, 0.0));
+  cmd.i_cmd_A = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(analyze_indentation(cmd), palp::ConfigError);
   IndentationParams bad;
   bad.poisson = 1.0;
   EXPECT_THROW(analyze_indentation(synth_curve(linear_spec(0.0, 0.0)), bad), palp::ConfigError);
+  // a bad setting is never taken for a data problem (experiments catch DataError alone)
+  try {
+    analyze_repetitions(synth_curve(linear_spec(0.0, 0.0)), bad);
+    FAIL() << "no throw";
+  } catch (const palp::DataError& e) {
+    FAIL() << "a bad setting thrown as a DataError: " << e.what();
+  } catch (const palp::ConfigError&) {
+  }
 }
 
 TEST(AnalysisIndentation, DescriptorsBeyondTheDeepestSampleAreAbsentWithReason) {

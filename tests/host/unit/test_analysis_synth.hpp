@@ -19,6 +19,11 @@ struct SynthSpec {
   double quantum_m = 0.0;      ///< encoder resolution (1e-6), 0 = none
   unsigned seed = 20261122;
   IndentationParams params{};
+  bool command_column = false;  ///< fill Curve::i_cmd_A with each level's current
+  /// > 0: the probe does not jump to each level's rest position but follows it as a damped
+  /// oscillator of this natural frequency and damping ratio (palp-sim's coil in contact rings
+  /// at ~10 Hz with zeta ~0.25), integrated over samples dt_s apart
+  double natural_Hz = 0.0, damping = 0.25, dt_s = 1e-3;
 };
 
 /// Loading then symmetric unloading per repetition. The probe sits where the coil force
@@ -34,7 +39,10 @@ inline Curve synth_curve(const SynthSpec& s) {
   c.z_m.resize(per_rep * s.reps);
   c.i_A.resize(per_rep * s.reps);
   c.rep.resize(per_rep * s.reps);
+  if (s.command_column) c.i_cmd_A.resize(per_rep * s.reps);
+  const double w = 2.0 * 3.14159265358979323846 * s.natural_Hz;
   for (int r = 0; r < s.reps; ++r) {
+    double x = NAN, v = 0.0;  // the oscillator's position and velocity
     for (int k = 0; k < per_rep; ++k) {
       const int lv = k / s.samples_per_level;
       const int level = lv <= steps ? lv : 2 * steps - lv;
@@ -52,11 +60,18 @@ inline Curve synth_curve(const SynthSpec& s) {
         delta = 0.5 * (lo + hi);
       }
       double z = s.contact_z_m + delta;
+      if (s.natural_Hz > 0.0) {  // semi-implicit Euler towards the level's rest position
+        if (std::isnan(x)) x = z;
+        v += s.dt_s * (w * w * (z - x) - 2.0 * s.damping * w * v);
+        x += s.dt_s * v;
+        z = x;
+      }
       if (s.quantum_m > 0.0) z = std::round(z / s.quantum_m) * s.quantum_m;
       const int n = r * per_rep + k;
       c.z_m[n] = z;
       c.i_A[n] = i + s.noise_A * noise(rng);
       c.rep[n] = r + 1;
+      if (s.command_column) c.i_cmd_A[n] = i;
     }
   }
   return c;

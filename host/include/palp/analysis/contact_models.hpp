@@ -34,6 +34,11 @@ double sneddon_contact_radius_m(double depth_m, double radius_m);
 double sneddon_force_N(double depth_m, double Estar_Pa, double radius_m);
 /// dF/ddelta of the exact sphere: 2 E* a(delta).
 double sneddon_stiffness_N_per_m(double depth_m, double Estar_Pa, double radius_m);
+/// Both from one solve for a(delta) (what a fit's Jacobian needs), equal to the two above.
+struct ForceStiffness {
+  double force_N = 0.0, stiffness_N_per_m = 0.0;
+};
+ForceStiffness sneddon_force_stiffness(double depth_m, double Estar_Pa, double radius_m);
 
 /// The polynomial factor (>= 1) and its derivative with respect to depth.
 double thickness_factor(double depth_m, double radius_m, const Thickness& t);

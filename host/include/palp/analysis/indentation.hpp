@@ -19,11 +19,21 @@
 // start: a grid profile over z_c (closed-form stiffness per candidate), then a bounded
 // Levenberg-Marquardt with an analytic Jacobian; no state carried between calls.
 // Model choice: lowest AIC = n ln(RSS/n) + 2p. Standard errors: Cov = (J^T J)^-1 RSS/(n - p).
+// What the fits run on (IndentationParams::fit_on): the staircase's plateaus (default) or every
+// loading sample. A plateau is a run of loading samples of one repetition at one commanded
+// current (Curve::i_cmd_A, the ramp program as the device ran it); the fit uses its mean z and
+// mean F weighted by its sample count (its mean's variance is sigma^2/n_j under the samples
+// fit's equal-noise assumption), so it minimises the samples fit's cost up to the scatter inside
+// each plateau; that scatter is added back at the solution (with the model's local slope), so
+// RSS, AIC, R^2 and the standard errors count every sample (n is the sample count either way).
+// A 1 kHz ramp with 25 ms steps fits ~25 times fewer points. A curve without i_cmd_A is fitted
+// on its samples (IndentationResult::fitted_on says which).
 // Model-free descriptors (k_fd, window slope) use the chosen model's z_c; the paper variants
 // take each repetition's first sample at i >= I_c as depth zero.
 //
-// Errors: malformed input (size mismatch, NaN/inf, too few points, bad parameters) throws
-// palp::ConfigError with a message that names the problem. A value that cannot be computed from
+// Errors: bad parameters and mismatched column sizes throw palp::ConfigError; data the analysis
+// cannot use (a NaN/inf sample, too few contact samples, no contact point giving a positive
+// stiffness) throws palp::DataError; both name the problem. A value that cannot be computed from
 // valid input is an absent Value with a reason, never NaN.
 #pragma once
 
@@ -35,6 +45,10 @@
 #include "palp/analysis/contact_models.hpp"
 
 namespace palp::analysis {
+
+/// What the model fits run on: the staircase's plateau means, or every loading sample.
+enum class FitOn { plateaus, samples };
+const char* fit_on_name(FitOn f);  ///< "plateaus", "samples"
 
 /// Instrument and analysis settings; defaults are the paper's (§II-A, §IV-A), in SI.
 struct IndentationParams {
@@ -49,7 +63,9 @@ struct IndentationParams {
   double window_hi_m = 0.75e-3;
   double local_half_width_m = 25e-6;       ///< F_o(d): local least squares over d +- this
   std::vector<double> tangent_depths_m{1e-3, 2e-3, 3e-3, 4e-3};
-  int min_points = 10;                     ///< fewer loading samples in contact: ConfigError
+  int min_points = 10;                     ///< fewer loading samples in contact: DataError
+  /// The fits on plateau means (needs Curve::i_cmd_A; without it the samples) or on samples.
+  FitOn fit_on = FitOn::plateaus;
   /// The force noise floor (rms), e.g. K_f x the current noise; gives each fit a reduced chi^2.
   std::optional<double> force_noise_N;
   /// A K_f(stroke) table instead of the constant: stroke positions from the stroke origin (m,
@@ -65,10 +81,13 @@ struct IndentationParams {
 
 /// A recording: probe position and coil current per sample, optional repetition number
 /// (any integers; samples of one repetition contiguous and in time order). Empty rep = one rep.
+/// Optional commanded current per sample: it marks the staircase's plateaus (FitOn::plateaus);
+/// empty = unknown (a LabVIEW export), and the fits run on the samples.
 struct Curve {
   Eigen::VectorXd z_m;
   Eigen::VectorXd i_A;
   Eigen::VectorXi rep;
+  Eigen::VectorXd i_cmd_A;
 };
 
 /// A value or the reason it is absent.
@@ -94,7 +113,8 @@ struct ModelFit {
   double rss = 0.0;          ///< N^2
   double r2 = 0.0;           ///< of the measured force F
   double aic = 0.0;
-  int n = 0;
+  int n = 0;                 ///< loading samples the fit describes
+  int n_points = 0;          ///< points it ran on: n, or the plateaus (FitOn::plateaus)
   double rms_residual_N = 0.0;         ///< sqrt(rss / (n - p))
   std::optional<double> reduced_chi2;  ///< rms_residual^2 / force_noise^2, when the noise is given
                                        ///< (near 1: the model is adequate)
@@ -126,11 +146,12 @@ Eigen::VectorXd coil_force_N(const Curve& c, const IndentationParams& p);
 /// F_o = K_f (i - I_c) - k_v (z - z_c).
 Eigen::VectorXd object_force_N(const Curve& c, const IndentationParams& p, double contact_z_m);
 Branches loading_branch(const Curve& c);
-/// Throws ConfigError on size mismatch, non-finite values or bad params.
+/// Throws ConfigError on size mismatch or bad params, DataError on a non-finite sample.
 void validate(const Curve& c, const IndentationParams& p);
 
-/// Fit on the loading branch (pooled over repetitions). Throws ConfigError when fewer than
-/// p.min_points loading samples reach I_c or the input is malformed.
+/// Fit on the loading branch (pooled over repetitions). Throws DataError when fewer than
+/// p.min_points loading samples reach I_c or no start gives a positive stiffness, ConfigError
+/// on bad params.
 ModelFit fit_linear(const Curve& c, const IndentationParams& p);
 ModelFit fit_hertz(const Curve& c, const IndentationParams& p);
 ModelFit fit_sneddon(const Curve& c, const IndentationParams& p);
@@ -156,6 +177,8 @@ struct IndentationResult {
   std::optional<Model> chosen;           ///< lowest AIC among the fits present
   std::string fit_reason;                ///< why no fit, when none
   bool has_baseline = false;
+  FitOn fitted_on = FitOn::samples;      ///< what the fits ran on (plateaus need i_cmd_A)
+  int n_fit_points = 0;                  ///< plateaus or samples the fits ran on
   std::vector<ContactEstimate> contact_estimates;  ///< initial estimates (see estimate_contact)
   int n_loading = 0, n_unloading = 0;
   double F0_N = 0.0;                     ///< K_f (I_0 - I_c)
@@ -188,9 +211,10 @@ struct DerivedSe {
 };
 DerivedSe derived_se(const IndentationResult& r);
 
-/// The whole analysis. Throws ConfigError on malformed input (size mismatch, NaN, bad params,
-/// too few contact samples); no contact (no sample with i >= I_c) gives a result whose values
-/// are absent with that reason, and a model that cannot be fitted is absent with its reason.
+/// The whole analysis. Throws ConfigError on bad params or mismatched sizes, DataError on a
+/// NaN sample or too few contact samples; no contact (no sample with i >= I_c) gives a result
+/// whose values are absent with that reason, and a model that cannot be fitted is absent with
+/// its reason.
 IndentationResult analyze_indentation(const Curve& c, const IndentationParams& p = {});
 
 /// Model-free descriptors over (depth, F_o) pairs, exposed for tests and tools.
@@ -226,8 +250,8 @@ std::vector<Hysteresis> hysteresis(const Curve& c, const IndentationParams& p, d
 
 /// Each repetition analysed on its own (analyze_indentation on its samples), with the mean and
 /// s.d. over repetitions of the main descriptors (a repetition without a value is skipped; one
-/// that cannot be analysed, e.g. too few points, has every value absent with the reason).
-/// Malformed input as a whole (NaN, sizes) still throws ConfigError.
+/// whose data cannot be analysed, e.g. too few points, has every value absent with the reason).
+/// Bad params or sizes throw ConfigError, a NaN sample DataError, as analyze_indentation.
 struct RepetitionSummary {
   std::vector<IndentationResult> per_rep;
   struct Stat { Value mean, sd; int n = 0; };

@@ -23,8 +23,9 @@
 //   volume pi R delta^2 / 2 is 35.34 mm^3 at 3 mm.)
 //
 // Errors: malformed input (sizes differ, NaN/inf, a non-positive geometry or pressure) throws
-// palp::ConfigError naming the problem; a value that cannot be computed from valid input is an
-// absent Value with a reason, never NaN.
+// palp::ConfigError naming the problem, except in analyze_pressure, where data it cannot use (a
+// NaN pressure sample, no contact) throws palp::DataError; a value that cannot be computed from
+// valid input is an absent Value with a reason, never NaN.
 #pragma once
 
 #include <Eigen/Core>
@@ -69,7 +70,8 @@ struct PressureResult {
   int n_loading = 0;         ///< loading samples at i >= I_c used for the fits
 };
 /// p_Pa: one column per channel (n x channels, channel k + 1 in column k), the same samples as
-/// the curve. Throws ConfigError on malformed input or when no loading sample reaches I_c.
+/// the curve. Throws ConfigError when the sizes differ or the contact point is not finite,
+/// DataError on a NaN sample or when no loading sample reaches I_c.
 PressureResult analyze_pressure(const Curve& c, const Eigen::MatrixXd& p_Pa,
                                 const IndentationParams& p, double contact_z_m);
 

@@ -1,0 +1,55 @@
+// palp::analyze_run's two kinds of failure (issue 16): data the analysis cannot use becomes the
+// run's analysis_reason (the DataError's exact text), while a bad analysis setting is a
+// ConfigError that reaches the caller instead of hiding in a reason.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "palp/error.hpp"
+#include "palp/experiments.hpp"
+
+namespace {
+
+/// A run whose recording holds `n` loading samples at or above I_c = 0.5 A (one repetition).
+palp::IndentationRun run_with_contact_samples(int n) {
+  palp::IndentationRun run;
+  run.settings = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
+  for (int k = 0; k < n; ++k) {
+    palp::RecordingRow row;
+    row.sample_index = static_cast<std::uint64_t>(k);
+    row.t_s = 0.01 * k;
+    row.i_cmd_A = row.i_A = 0.5 + 0.01 * k;
+    row.z_mm = 25.0 + 0.02 * k;
+    run.recording.append(row);
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST(AnalyzeRun, TooFewContactSamplesGiveTheDataErrorsTextAsTheReason) {
+  palp::IndentationRun run = run_with_contact_samples(5);
+  palp::analyze_run(run);
+  EXPECT_FALSE(run.analysis);
+  EXPECT_FALSE(run.repetitions);
+  EXPECT_EQ(run.analysis_reason,
+            "too few points: 5 loading samples at or above I_c = 0.5 A, the fits need at least 10");
+  EXPECT_EQ(run.pressure_reason, "no indentation analysis: " + run.analysis_reason);
+}
+
+TEST(AnalyzeRun, ABadAnalysisSettingPropagatesAsAConfigError) {
+  palp::IndentationRun run = run_with_contact_samples(40);
+  run.settings.analysis.poisson = 1.0;  // E* = E / (1 - nu^2) has no value
+  EXPECT_THROW(palp::analyze_run(run), palp::ConfigError);
+  run.settings.analysis.poisson = 0.5;
+  run.settings.analysis.min_points = 2;  // below the 3 a fit needs
+  EXPECT_THROW(palp::analyze_run(run), palp::ConfigError);
+}
+
+TEST(AnalyzeRun, ANonFiniteSampleIsADataProblemNamedInTheReason) {
+  palp::IndentationRun run = run_with_contact_samples(40);
+  run.recording.z_mm[7] = std::numeric_limits<double>::quiet_NaN();
+  palp::analyze_run(run);
+  EXPECT_FALSE(run.analysis);
+  EXPECT_EQ(run.analysis_reason.rfind("indentation curve: sample 7 is not finite", 0), 0u) << run.analysis_reason;
+}
