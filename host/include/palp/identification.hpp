@@ -127,7 +127,9 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
                            const IdentifyProgressFn& progress = {},
                            const std::function<bool()>& cancelled = {});
 
-/// The analysis identify() does, from run.recording (re-analysis of a loaded run).
+/// The analysis identify() does, from run.recording (re-analysis of a loaded run): fills frf
+/// and fit, or analysis_reason with the text of the DataError that says why the recording gives
+/// none; a bad setting (ConfigError) propagates.
 void analyze_identification(IdentificationRun& run);
 
 /// A run rebuilt from a loaded recording's sidecar (settings with K_f, the program as the device

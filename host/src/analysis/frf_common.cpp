@@ -20,7 +20,7 @@ constexpr double kGridTolerance_ticks = 0.01;
 void check_finite(const std::vector<double>& v, const char* column, const char* who) {
   for (std::size_t k = 0; k < v.size(); ++k)
     if (!std::isfinite(v[k]))
-      throw ConfigError(strf("%s: %s is not a finite number at sample %zu", who, column, k));
+      throw DataError(strf("%s: %s is not a finite number at sample %zu", who, column, k));
 }
 }  // namespace
 
@@ -43,13 +43,13 @@ TickedRecording ticked(const Recording& rec, std::uint32_t control_rate_Hz, cons
                            "40000 Hz)",
                            who, control_rate_Hz));
   if (!rec.i_cmd_A)
-    throw ConfigError(strf("%s: the recording has no i_cmd_A column (the commanded current "
+    throw DataError(strf("%s: the recording has no i_cmd_A column (the commanded current "
                            "places the program in it)",
                            who));
   const std::size_t n = rec.size();
   if (rec.i_A.size() != n || rec.z_mm.size() != n || rec.i_cmd_A->size() != n)
-    throw ConfigError(strf("%s: the recording's columns differ in length", who));
-  if (n < 2) throw ConfigError(strf("%s: the recording has %zu samples", who, n));
+    throw DataError(strf("%s: the recording's columns differ in length", who));
+  if (n < 2) throw DataError(strf("%s: the recording has %zu samples", who, n));
   check_finite(rec.t_s, "t_s", who);
   check_finite(rec.i_A, "i_A", who);
   check_finite(rec.z_mm, "z_mm", who);
@@ -64,13 +64,13 @@ TickedRecording ticked(const Recording& rec, std::uint32_t control_rate_Hz, cons
     const double ticks = rec.t_s[k] * control_rate_Hz;
     const double whole = std::round(ticks);
     if (std::abs(ticks - whole) > kGridTolerance_ticks)
-      throw ConfigError(strf("%s: t_s at sample %zu (%.6f s) is not on the control-tick grid of "
+      throw DataError(strf("%s: t_s at sample %zu (%.6f s) is not on the control-tick grid of "
                              "%u Hz: is the control rate right?",
                              who, k, rec.t_s[k], control_rate_Hz));
     r.tick[k] = static_cast<std::int64_t>(whole);
     if (k > 0) {
       if (r.tick[k] <= r.tick[k - 1])
-        throw ConfigError(strf("%s: t_s does not increase at sample %zu", who, k));
+        throw DataError(strf("%s: t_s does not increase at sample %zu", who, k));
       ++intervals[r.tick[k] - r.tick[k - 1]];
     }
   }
@@ -84,7 +84,7 @@ std::size_t first_departure(const TickedRecording& r, double threshold_A, const 
   const std::vector<double>& c = *r.rec->i_cmd_A;
   for (std::size_t k = 1; k < c.size(); ++k)
     if (std::abs(c[k] - c[0]) > threshold_A) return k;
-  throw ConfigError(strf("%s: the commanded current (i_cmd_A) never changes: the recording does "
+  throw DataError(strf("%s: the commanded current (i_cmd_A) never changes: the recording does "
                          "not show the program",
                          who));
 }

@@ -80,7 +80,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
       std::max(3 * proto::kCurrentLsb_A, 0.1 * m.line_amplitude_A * std::sqrt(K / 2));
   const std::size_t r0 = detail::first_departure(r, threshold, kMultisineWho);
   if (r0 + N > r.size() || r.tick[r0 + N - 1] - r.tick[r0] != static_cast<std::int64_t>(N - 1) * d)
-    throw ConfigError(strf("%s: the recording has no whole period of the commanded current "
+    throw DataError(strf("%s: the recording has no whole period of the commanded current "
                            "after its first change (at %.6f s)",
                            kMultisineWho, r.rec->t_s[r0]));
   double amplitude = 0, sum_hr = 0, sum_hh = 0, delta0 = 0;
@@ -92,7 +92,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
     turns[n] = std::arg(c) / kTwoPi - l.phase[n] / kTurn;
   }
   if (std::abs(amplitude - m.line_amplitude_A) > 0.05 * m.line_amplitude_A + proto::kCurrentLsb_A)
-    throw ConfigError(strf("%s: the commanded current does not show this multisine (line "
+    throw DataError(strf("%s: the commanded current does not show this multisine (line "
                            "amplitude %.5f A, the program's %.5f A)",
                            kMultisineWho, amplitude, static_cast<double>(m.line_amplitude_A)));
   {
@@ -160,7 +160,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   const std::uint32_t P = l.period_ticks;
   const std::int64_t d = r.interval_ticks;
   if (P % d != 0)
-    throw ConfigError(strf("%s: the stream's sample interval (%lld ticks) does not divide the "
+    throw DataError(strf("%s: the stream's sample interval (%lld ticks) does not divide the "
                            "period (%u ticks): choose a decimation that divides it",
                            kMultisineWho, static_cast<long long>(d), P));
   const auto N = static_cast<std::size_t>(P / d);
@@ -172,7 +172,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
       std::max<std::int64_t>(0, r.tick.back() - t0 + d) / P);
   const std::int64_t program_periods = program.periods;
   if (program_periods > 0 && periods_recorded < program_periods)
-    throw ConfigError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
+    throw DataError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
                            "it started at %.6f s)",
                            kMultisineWho, rec.t_s.back(),
                            static_cast<double>(t0 + program_periods * P) / rate,
@@ -180,7 +180,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
   const std::int64_t last = program_periods > 0 ? program_periods : periods_recorded;
   const std::int64_t discard = options.multisine_discard_periods;
   if (last <= discard)
-    throw ConfigError(strf("%s: %lld whole periods recorded and %lld discarded: none left to "
+    throw DataError(strf("%s: %lld whole periods recorded and %lld discarded: none left to "
                            "measure",
                            kMultisineWho, static_cast<long long>(last), static_cast<long long>(discard)));
   // the first sample of every whole measured period (N samples spaced d); a period with a gap
@@ -202,7 +202,7 @@ Frf multisine_frf(const Recording& rec, const proto::LoadMultisine& program,
     offset.push_back(r.tick[k] - start);
   }
   if (first.empty())
-    throw ConfigError(strf("%s: every measured period has a gap in the stream", kMultisineWho));
+    throw DataError(strf("%s: every measured period has a gap in the stream", kMultisineWho));
   const std::size_t M = first.size();
 
   // harmonics to transform: the excited lines, then the empty ones between them

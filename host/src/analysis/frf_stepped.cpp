@@ -104,7 +104,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   const auto span = static_cast<std::int64_t>(0.85 * static_cast<double>(first.end));
   const std::vector<std::size_t> idx = samples_in(r.tick, from, r.tick[r0 - 1] + span);
   if (idx.size() < 8)
-    throw ConfigError(strf("%s: the first line has %zu samples of the commanded current at the "
+    throw DataError(strf("%s: the first line has %zu samples of the commanded current at the "
                            "recording's start (need 8)",
                            kSteppedWho, idx.size()));
   const SineFit f = fit_sine(*r.rec->i_cmd_A, 1.0, idx, r.tick, from, first.increment, r.rate_Hz,
@@ -112,7 +112,7 @@ std::int64_t program_start_tick(const detail::TickedRecording& r, const proto::L
   // i_cmd = offset + A sin(w (t - t0)) = Re{X e^{j w (t - from)}} with X = -j A e^{j w delta},
   // delta = from - t0 >= 0 ticks
   if (std::abs(f.amplitude() - amplitude) > 0.05 * amplitude + 3 * proto::kCurrentLsb_A)
-    throw ConfigError(strf("%s: the commanded current does not show the sweep's first line "
+    throw DataError(strf("%s: the commanded current does not show the sweep's first line "
                            "(amplitude %.4f A at %.4f Hz, the program's %.4f A)",
                            kSteppedWho, f.amplitude(),
                            first.increment * static_cast<double>(r.rate_Hz) / kTurn, amplitude));
@@ -145,7 +145,7 @@ Frf stepped_sine_frf(const Recording& rec, const proto::LoadSweep& program,
   const std::int64_t total = lines.back().end;
   const double rate = control_rate_Hz;
   if (r.tick.back() - t0 < total - r.interval_ticks)
-    throw ConfigError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
+    throw DataError(strf("%s: the recording ends at %.6f s, before the program does (%.6f s; "
                            "it started at %.6f s)",
                            kSteppedWho, rec.t_s.back(), static_cast<double>(t0 + total) / rate,
                            static_cast<double>(t0) / rate));
@@ -162,7 +162,7 @@ Frf stepped_sine_frf(const Recording& rec, const proto::LoadSweep& program,
         samples_in(r.tick, t0 + l.measure_begin, t0 + l.end);
     const std::size_t needed = std::max<std::size_t>(8, 4 * std::size_t{l.measure_cycles});
     if (idx.size() < needed)
-      throw ConfigError(strf("%s: line %zu (%.4f Hz) has %zu samples in its %u measured cycles; "
+      throw DataError(strf("%s: line %zu (%.4f Hz) has %zu samples in its %u measured cycles; "
                              "it needs %zu (a faster stream or more cycles)",
                              kSteppedWho, j, f_Hz, idx.size(), l.measure_cycles, needed));
     const SineFit fi = fit_sine(rec.i_A, 1.0, idx, r.tick, t0 + l.begin, l.increment,

@@ -32,30 +32,30 @@ std::string line_name(std::size_t i, double f_Hz) {
   return s.str();
 }
 
-/// ConfigError for anything the fit cannot use; true when the lines carry sigma.
+/// DataError for anything the fit cannot use; true when the lines carry sigma.
 bool check_lines(std::span<const FrfLine> lines) {
   if (lines.size() < 3)
-    throw ConfigError("the second-order fit needs at least 3 lines, got " +
+    throw DataError("the second-order fit needs at least 3 lines, got " +
                       std::to_string(lines.size()));
   std::size_t with_sigma = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const FrfLine& l = lines[i];
     if (!std::isfinite(l.f_Hz) || !std::isfinite(l.G_m_per_N.real()) ||
         !std::isfinite(l.G_m_per_N.imag()) || !std::isfinite(l.sigma_m_per_N))
-      throw ConfigError("second-order fit: " + line_name(i, l.f_Hz) + " has a non-finite value");
+      throw DataError("second-order fit: " + line_name(i, l.f_Hz) + " has a non-finite value");
     if (l.f_Hz <= 0)
-      throw ConfigError("second-order fit: " + line_name(i, l.f_Hz) +
+      throw DataError("second-order fit: " + line_name(i, l.f_Hz) +
                         " has a frequency that is not positive");
     if (l.sigma_m_per_N < 0)
-      throw ConfigError("second-order fit: " + line_name(i, l.f_Hz) + " has a negative sigma");
+      throw DataError("second-order fit: " + line_name(i, l.f_Hz) + " has a negative sigma");
     if (l.G_m_per_N == cd(0, 0))
-      throw ConfigError("second-order fit: " + line_name(i, l.f_Hz) + " has G = 0");
+      throw DataError("second-order fit: " + line_name(i, l.f_Hz) + " has G = 0");
     if (l.sigma_m_per_N > 0) ++with_sigma;
   }
   if (with_sigma != 0 && with_sigma != lines.size()) {
     for (std::size_t i = 0; i < lines.size(); ++i)
       if ((lines[i].sigma_m_per_N > 0) != (lines[0].sigma_m_per_N > 0))
-        throw ConfigError("second-order fit: " + line_name(i, lines[i].f_Hz) +
+        throw DataError("second-order fit: " + line_name(i, lines[i].f_Hz) +
                           (lines[0].sigma_m_per_N > 0 ? " has no sigma" : " has a sigma") +
                           " where line 1 " + (lines[0].sigma_m_per_N > 0 ? "has one" : "has none") +
                           "; give every line a sigma or none");

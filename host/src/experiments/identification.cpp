@@ -285,13 +285,13 @@ void analyze_identification(IdentificationRun& run) {
     run.frf = run.settings.method == SweepMethod::stepped
                   ? analysis::stepped_sine_frf(run.recording, run.sweep, run.control_rate_Hz, options)
                   : analysis::multisine_frf(run.recording, run.multisine, run.control_rate_Hz, options);
-  } catch (const ConfigError& e) {
+  } catch (const DataError& e) {  // a bad setting is no data problem: it propagates
     run.analysis_reason = std::string("no frequency response: ") + e.what();
     return;
   }
   try {
     run.fit = analysis::fit_second_order(run.frf->lines, run.settings.fit);
-  } catch (const ConfigError& e) {
+  } catch (const DataError& e) {
     run.analysis_reason = std::string("no second-order fit: ") + e.what();
   }
 }

@@ -137,7 +137,7 @@ void analyze_run(IndentationRun& run) {
   try {
     run.repetitions = analysis::analyze_repetitions(c, run.settings.analysis);
     // one repetition: the pooled analysis is that repetition's (the same samples), so the fits
-    // (the costly part: the Sneddon fit solves per sample) are not run twice
+    // (the costly part: the Sneddon fit solves per fit point) are not run twice
     const auto& per = run.repetitions->per_rep;
     if (per.size() == 1 && per.front().chosen) {
       run.analysis = per.front();

@@ -196,20 +196,20 @@ TEST(SteppedSineFrf, AControlRateTheDeviceDoesNotRunIsAConfigError) {
   }
 }
 
-TEST(SteppedSineFrf, SamplesOffTheControlTickGridAreAConfigError) {
+TEST(SteppedSineFrf, SamplesOffTheControlTickGridAreADataError) {
   const proto::LoadSweep m = short_sweep();
   palp::Recording rec = sweep_recording(m, Synth{});
   rec.t_s[1] = rec.t_s[0] + 25e-6;  // half a tick at 20 kHz
   try {
     an::stepped_sine_frf(rec, m, kRate);
     FAIL();
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_STREQ(e.what(), "stepped_sine_frf: t_s at sample 1 (12.345025 s) is not on the "
                            "control-tick grid of 20000 Hz: is the control rate right?");
   }
 }
 
-TEST(SteppedSineFrf, ATruncatedRecordingIsAConfigErrorNamingTheTimes) {
+TEST(SteppedSineFrf, ATruncatedRecordingIsADataErrorNamingTheTimes) {
   const proto::LoadSweep m = short_sweep();
   const Synth s;
   palp::Recording whole = sweep_recording(m, s), rec;
@@ -228,23 +228,23 @@ TEST(SteppedSineFrf, ATruncatedRecordingIsAConfigErrorNamingTheTimes) {
   try {
     an::stepped_sine_frf(rec, m, kRate);
     FAIL();
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_EQ(std::string(e.what()), expected);
     EXPECT_THAT(e.what(), HasSubstr("the recording ends at 32.745000 s"));
   }
 }
 
-TEST(SteppedSineFrf, ARecordingWithoutTheCommandedCurrentIsAConfigError) {
+TEST(SteppedSineFrf, ARecordingWithoutTheCommandedCurrentOrWithANaNIsADataError) {
   const proto::LoadSweep m = short_sweep();
   palp::Recording rec = sweep_recording(m, Synth{});
   rec.i_cmd_A.reset();
-  EXPECT_THROW(an::stepped_sine_frf(rec, m, kRate), palp::ConfigError);
+  EXPECT_THROW(an::stepped_sine_frf(rec, m, kRate), palp::DataError);
   rec = sweep_recording(m, Synth{});
   rec.z_mm[100] = std::nan("");
   try {
     an::stepped_sine_frf(rec, m, kRate);
     FAIL();
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_STREQ(e.what(), "stepped_sine_frf: z_mm is not a finite number at sample 100");
   }
 }
@@ -384,7 +384,7 @@ TEST(MultisineFrf, APeriodWithAGapInTheStreamIsLeftOutAndNoted) {
     EXPECT_LT(std::abs(l.G_m_per_N - g_true(l.f_Hz)), 1e-9 * std::abs(g_true(l.f_Hz)));
 }
 
-TEST(MultisineFrf, ATruncatedRecordingAndAStreamNotDividingThePeriodAreConfigErrors) {
+TEST(MultisineFrf, ATruncatedRecordingAndAStreamNotDividingThePeriodAreDataErrors) {
   proto::LoadMultisine m = small_multisine();
   m.periods = 3;
   const Synth s;
@@ -395,7 +395,7 @@ TEST(MultisineFrf, ATruncatedRecordingAndAStreamNotDividingThePeriodAreConfigErr
   try {
     an::multisine_frf(rec, m, kRate);
     FAIL();
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_STREQ(e.what(), "multisine_frf: the recording ends at 15.999000 s, before the program "
                            "does (18.745650 s; it started at 12.745650 s)");
   }
@@ -403,7 +403,7 @@ TEST(MultisineFrf, ATruncatedRecordingAndAStreamNotDividingThePeriodAreConfigErr
   try {
     an::multisine_frf(whole, m, kRate);
     FAIL();
-  } catch (const palp::ConfigError& e) {
+  } catch (const palp::DataError& e) {
     EXPECT_STREQ(e.what(), "multisine_frf: the stream's sample interval (20 ticks) does not "
                            "divide the period (66667 ticks): choose a decimation that divides "
                            "it");

@@ -187,7 +187,7 @@ TEST(SecondOrderFit, RefusesBadLinesNamingThem) {
   const auto message = [](std::vector<an::FrfLine> lines) {
     try {
       an::fit_second_order(lines);
-    } catch (const palp::ConfigError& e) {
+    } catch (const palp::DataError& e) {
       return std::string(e.what());
     }
     return std::string("no error");

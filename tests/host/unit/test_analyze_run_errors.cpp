@@ -1,12 +1,14 @@
-// palp::analyze_run's two kinds of failure (issue 16): data the analysis cannot use becomes the
-// run's analysis_reason (the DataError's exact text), while a bad analysis setting is a
-// ConfigError that reaches the caller instead of hiding in a reason.
+// The experiments' two kinds of analysis failure (issue 16), for palp::analyze_run and
+// palp::analyze_identification: data the analysis cannot use becomes the run's analysis_reason
+// (the DataError's exact text), while a bad setting is a ConfigError that reaches the caller
+// instead of hiding in a reason.
 #include <gtest/gtest.h>
 
 #include <limits>
 
 #include "palp/error.hpp"
 #include "palp/experiments.hpp"
+#include "palp/identification.hpp"
 
 namespace {
 
@@ -52,4 +54,39 @@ TEST(AnalyzeRun, ANonFiniteSampleIsADataProblemNamedInTheReason) {
   palp::analyze_run(run);
   EXPECT_FALSE(run.analysis);
   EXPECT_EQ(run.analysis_reason.rfind("indentation curve: sample 7 is not finite", 0), 0u) << run.analysis_reason;
+}
+
+namespace {
+
+/// A stepped-sine identification run whose recording holds two samples (the program unseen).
+palp::IdentificationRun two_sample_identification() {
+  palp::IdentificationRun run;
+  run.settings.method = palp::SweepMethod::stepped;
+  run.sweep = run.settings.sweep_program();
+  run.control_rate_Hz = 20000;
+  for (int k = 0; k < 2; ++k) {
+    palp::RecordingRow row;
+    row.t_s = 0.001 * k;
+    row.i_cmd_A = row.i_A = 0.5;
+    row.z_mm = 25.0;
+    run.recording.append(row);
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST(AnalyzeIdentification, ARecordingWithoutTheProgramGivesTheDataErrorsTextAsTheReason) {
+  palp::IdentificationRun run = two_sample_identification();
+  palp::analyze_identification(run);
+  EXPECT_FALSE(run.frf);
+  EXPECT_EQ(run.analysis_reason,
+            "no frequency response: stepped_sine_frf: the commanded current (i_cmd_A) never "
+            "changes: the recording does not show the program");
+}
+
+TEST(AnalyzeIdentification, AControlRateTheDeviceDoesNotRunPropagatesAsAConfigError) {
+  palp::IdentificationRun run = two_sample_identification();
+  run.control_rate_Hz = 12345;
+  EXPECT_THROW(palp::analyze_identification(run), palp::ConfigError);
 }

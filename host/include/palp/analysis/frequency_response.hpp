@@ -26,8 +26,10 @@
 // give one line only 2 degrees of freedom, and weights that noisy made the fit erratic (b_v off by
 // up to 12 % in free air on palp-sim, normalised cost up to 30; pooled: within 1.5 %, cost ~1). A period with a gap in the stream is left out, and a note says which.
 //
-// Errors: ConfigError naming the problem (too few samples for a line, a recording that does not
-// cover the program, stream rate not dividing the period, NaN in the data ...).
+// Errors, naming the problem: DataError for a recording that cannot give the response (too few
+// samples for a line, a recording that does not cover the program or lacks i_cmd_A, stream rate
+// not dividing the period, NaN or off-grid times in the data ...); ConfigError for bad settings
+// or programs (a control rate the device does not run, no line, a negative discard ...).
 #pragma once
 
 #include <cstdint>

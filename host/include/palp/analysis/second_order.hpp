@@ -15,7 +15,7 @@
 // measurement's noise; `adequate` is cost <= FitOptions::adequate_cost. Lines without sigma
 // (a table) are weighted by 1/|G|^2 (relative error) and then the cost is unknown (nullopt).
 //
-// Errors: ConfigError for fewer than 3 lines, a non-finite value, f <= 0, a negative sigma or a
+// Errors: DataError for fewer than 3 lines, a non-finite value, f <= 0, a negative sigma or a
 // mix of lines with and without sigma, naming the line.
 #pragma once
 
