@@ -119,6 +119,25 @@ detail::FitPoints fit_points(const Curve& c, const detail::FitData& d, const std
       b = k;
     }
   }
+  // a plateau whose probe travels far more than the typical one (the settle onto the specimen
+  // at the ramp's start, a slip) enters as its samples: a mean and a slope would not describe it
+  std::vector<double> span(runs.size());
+  for (std::size_t j = 0; j < runs.size(); ++j) {
+    const auto z = d.z_m.segment(runs[j].first, runs[j].second - runs[j].first);
+    span[j] = z.maxCoeff() - z.minCoeff();
+  }
+  std::vector<double> sorted = span;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double wide = 3.0 * (sorted.empty() ? 0.0 : sorted[sorted.size() / 2]);
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> points;
+  for (std::size_t j = 0; j < runs.size(); ++j) {
+    if (span[j] > wide && span[j] > 0.0) {
+      for (Eigen::Index k = runs[j].first; k < runs[j].second; ++k) points.emplace_back(k, k + 1);
+    } else {
+      points.push_back(runs[j]);
+    }
+  }
+  runs = std::move(points);
   const auto m = static_cast<Eigen::Index>(runs.size());
   for (Eigen::VectorXd* v : {&f.z_m, &f.F_N, &f.w, &f.szz, &f.sff, &f.szf}) v->resize(m);
   for (Eigen::Index j = 0; j < m; ++j) {

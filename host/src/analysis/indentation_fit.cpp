@@ -51,6 +51,22 @@ double unit_stiffness(Model m, double depth, double R, const std::optional<Thick
   return unit_law(m, depth, R, t).stiffness_N_per_m;
 }
 
+// Its second derivative (how a plateau's slope moves with z_c); u: unit_law at this depth.
+double unit_curvature(Model m, double depth, double R, const std::optional<Thickness>& t,
+                      const ForceStiffness& u) {
+  if (!(depth > 0.0) || m == Model::linear) return 0.0;
+  if (t) {  // the thickness factor's product rule: a central difference of the slope
+    const double h = 1e-6 * std::max(depth, 1e-3 * R);
+    return (unit_stiffness(m, depth + h, R, t) - unit_stiffness(m, std::max(depth - h, 0.0), R, t)) /
+           (depth + h - std::max(depth - h, 0.0));
+  }
+  if (m == Model::hertz) return std::sqrt(R / depth);  // d/ddelta of 2 sqrt(R delta)
+  // Sneddon: dF/ddelta = 2 a, and ddelta/da = atanh(a/R) + (a/R) / (1 - (a/R)^2)
+  const double a_over_R = 0.5 * u.stiffness_N_per_m / R;
+  if (!(a_over_R < 1.0)) return 0.0;
+  return 2.0 / (std::atanh(a_over_R) + a_over_R / (1.0 - a_over_R * a_over_R));
+}
+
 struct Setup {
   Model model;
   bool offset;
@@ -60,25 +76,51 @@ struct Setup {
   Eigen::VectorXd sqrt_w;
 };
 
+// Residuals: sqrt(w) (F - model) at each point, then on plateaus one more per plateau,
+// sqrt(szz) (slope - szf / szz) with slope = k_v + theta g'(delta): the samples' squared
+// residuals inside a plateau are szz (slope - szf/szz)^2 + (sff - szf^2/szz) to second order,
+// so the fit minimises the samples fit's cost (FitPoints::scatter_floor is the constant rest).
+Eigen::Index residual_count(const Setup& s) {
+  return s.d->on == FitOn::plateaus ? 2 * s.d->z_m.size() : s.d->z_m.size();
+}
+
 void residuals(const Setup& s, const Eigen::VectorXd& q, Eigen::VectorXd& r) {
   const double theta = q[0], zc = q[1], c = s.offset ? q[2] : 0.0;
   const auto& z = s.d->z_m;
   const auto& F = s.d->F_N;
-  r.resize(z.size());
-  for (Eigen::Index k = 0; k < z.size(); ++k) {
+  const Eigen::Index n = z.size();
+  const bool within = s.d->on == FitOn::plateaus;
+  r.resize(residual_count(s));
+  for (Eigen::Index k = 0; k < n; ++k) {
     const double delta = z[k] - zc;
-    r[k] = s.sqrt_w[k] * (F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c));
+    if (!within) {
+      r[k] = s.sqrt_w[k] * (F[k] - (s.kv * delta + theta * unit_force(s.model, delta, s.R, s.thickness) + c));
+      continue;
+    }
+    const ForceStiffness u = unit_law(s.model, delta, s.R, s.thickness);
+    r[k] = s.sqrt_w[k] * (F[k] - (s.kv * delta + theta * u.force_N + c));
+    const double szz = s.d->szz[k];
+    r[n + k] = szz > 0.0 ? std::sqrt(szz) * (s.kv + theta * u.stiffness_N_per_m - s.d->szf[k] / szz) : 0.0;
   }
 }
 
-// dr/dtheta = -g(delta), dr/dz_c = k_v + theta g'(delta), dr/dc = -1 (each times sqrt(w)).
+// dr/dtheta = -g(delta), dr/dz_c = k_v + theta g'(delta), dr/dc = -1 (each times sqrt(w)); the
+// plateau rows: sqrt(szz) g'(delta) and -sqrt(szz) theta g''(delta).
 void jacobian(const Setup& s, const Eigen::VectorXd& q, Eigen::MatrixXd& J) {
   const auto& z = s.d->z_m;
-  for (Eigen::Index k = 0; k < z.size(); ++k) {
-    const ForceStiffness u = unit_law(s.model, z[k] - q[1], s.R, s.thickness);
+  const Eigen::Index n = z.size();
+  const bool within = s.d->on == FitOn::plateaus;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double delta = z[k] - q[1];
+    const ForceStiffness u = unit_law(s.model, delta, s.R, s.thickness);
     J(k, 0) = -s.sqrt_w[k] * u.force_N;
     J(k, 1) = s.sqrt_w[k] * (s.kv + q[0] * u.stiffness_N_per_m);
     if (s.offset) J(k, 2) = -s.sqrt_w[k];
+    if (!within) continue;
+    const double root = std::sqrt(s.d->szz[k]);
+    J(n + k, 0) = root * u.stiffness_N_per_m;
+    J(n + k, 1) = root > 0.0 ? -root * q[0] * unit_curvature(s.model, delta, s.R, s.thickness, u) : 0.0;
+    if (s.offset) J(n + k, 2) = 0.0;
   }
 }
 
@@ -136,11 +178,7 @@ ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationPa
   if (s.offset) m.names.push_back("offset_N");
   m.params = lm.p;
   const detail::FitPoints& pts = *s.d;
-  // the samples' scatter inside the plateaus about the model's local slope (0 on samples)
-  Eigen::VectorXd slope(pts.z_m.size());
-  for (Eigen::Index k = 0; k < slope.size(); ++k)
-    slope[k] = s.kv + lm.p[0] * unit_stiffness(s.model, pts.z_m[k] - lm.p[1], s.R, s.thickness);
-  const double rss = lm.rss + pts.scatter(slope);
+  const double rss = lm.rss + pts.scatter_floor();  // every sample's residual (see residuals)
   m.n = static_cast<int>(std::lround(pts.n_samples()));
   m.n_points = static_cast<int>(pts.z_m.size());
   m.se = detail::standard_errors(lm.J, rss, m.n);
@@ -176,8 +214,11 @@ ModelFit finish(const Setup& s, const detail::LsqResult& lm, const IndentationPa
 
 }  // namespace
 
-double detail::FitPoints::scatter(const Eigen::VectorXd& slope) const {
-  return (sff.array() - 2.0 * slope.array() * szf.array() + slope.array().square() * szz.array()).sum();
+double detail::FitPoints::scatter_floor() const {
+  double sum = 0.0;
+  for (Eigen::Index k = 0; k < sff.size(); ++k)
+    sum += szz[k] > 0.0 ? std::max(sff[k] - szf[k] * szf[k] / szz[k], 0.0) : sff[k];
+  return sum;
 }
 
 ModelFit detail::fit_model(Model model, const FitData& d, const IndentationParams& p,
@@ -229,7 +270,7 @@ ModelFit detail::fit_model(Model model, const FitData& d, const IndentationParam
     typ[2] = std::max(d.points.F_N.cwiseAbs().maxCoeff(), 1e-6);
   }
   const auto lm = detail::levenberg_marquardt(
-      [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, d.points.z_m.size(), p0,
+      [&](const Eigen::VectorXd& q, Eigen::VectorXd& r) { residuals(s, q, r); }, residual_count(s), p0,
       lo, hi, typ, [&](const Eigen::VectorXd& q, Eigen::MatrixXd& J) { jacobian(s, q, J); },
       kMaxFitIterations);
   return finish(s, lm, p, start ? start->contact_method : range.method);

@@ -16,9 +16,9 @@ struct FitPoints {
   Eigen::VectorXd szz, sff, szf;  ///< sum (z - zbar)^2, (F - Fbar)^2, (z - zbar)(F - Fbar)
   FitOn on = FitOn::samples;
   double n_samples() const { return w.sum(); }
-  /// The samples' squared residuals inside the plateaus about a line of this slope through
-  /// each plateau's mean, given the model's slope dF/dz at each point.
-  double scatter(const Eigen::VectorXd& slope) const;
+  /// The part of the samples' squared residuals inside the plateaus that no slope removes:
+  /// sum of sff - szf^2/szz (the fit's plateau rows carry the rest).
+  double scatter_floor() const;
 };
 
 /// Loading samples ready for a fit: position and coil force F = K_f (i - I_c).

@@ -58,7 +58,10 @@ TEST(AnalysisIndentationPlateaus, PlateauAndSampleFitsAgreeWithinTheirStandardEr
   const IndentationResult on_samples = analyse_fitting_on(c, FitOn::samples);
   EXPECT_EQ(on_plateaus.fitted_on, FitOn::plateaus);
   EXPECT_EQ(on_samples.fitted_on, FitOn::samples);
-  EXPECT_EQ(on_plateaus.n_fit_points, 3 * 101);  // 100 steps up from 0.5 A, 3 repetitions
+  // 100 steps up from 0.5 A, 3 repetitions: 303 plateaus, of which those where the probe
+  // travels far (the rings' first cycles) enter as their samples; still a tenth of the samples
+  EXPECT_GE(on_plateaus.n_fit_points, 3 * 101);
+  EXPECT_LT(on_plateaus.n_fit_points, on_samples.n_loading / 10);
   EXPECT_EQ(on_samples.n_fit_points, on_samples.n_loading);
   ASSERT_TRUE(on_plateaus.chosen && on_samples.chosen);
   EXPECT_EQ(*on_plateaus.chosen, *on_samples.chosen);
@@ -129,7 +132,8 @@ TEST(AnalysisIndentationPlateaus, EachRepetitionIsFittedOnItsOwnPlateaus) {
   ASSERT_EQ(s.per_rep.size(), 3u);
   for (const IndentationResult& r : s.per_rep) {
     EXPECT_EQ(r.fitted_on, FitOn::plateaus);
-    EXPECT_EQ(r.n_fit_points, 101);
+    EXPECT_GE(r.n_fit_points, 101);
+    EXPECT_LT(r.n_fit_points, r.n_loading / 10);
   }
   EXPECT_EQ(s.delta0_m.n, 3);
 }

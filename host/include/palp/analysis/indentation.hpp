@@ -23,9 +23,12 @@
 // loading sample. A plateau is a run of loading samples of one repetition at one commanded
 // current (Curve::i_cmd_A, the ramp program as the device ran it); the fit uses its mean z and
 // mean F weighted by its sample count (its mean's variance is sigma^2/n_j under the samples
-// fit's equal-noise assumption), so it minimises the samples fit's cost up to the scatter inside
-// each plateau; that scatter is added back at the solution (with the model's local slope), so
-// RSS, AIC, R^2 and the standard errors count every sample (n is the sample count either way).
+// fit's equal-noise assumption), plus one residual per plateau for its samples' scatter about
+// the model's local slope (from the plateau's centred sums of squares): it minimises the samples
+// fit's cost up to the model's curvature across a plateau, and RSS, AIC, R^2 and the standard
+// errors count every sample (n is the sample count either way). A plateau whose z spans more
+// than 3 times the median plateau's (the settle onto the specimen at the ramp's start, a slip)
+// enters as its samples.
 // A 1 kHz ramp with 25 ms steps fits ~25 times fewer points. A curve without i_cmd_A is fitted
 // on its samples (IndentationResult::fitted_on says which).
 // Model-free descriptors (k_fd, window slope) use the chosen model's z_c; the paper variants
