@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "palp/error.hpp"
-#include "palp/experiments.hpp"
+#include "palp/indent.hpp"
 #include "palp/identification.hpp"
 
 namespace {
