@@ -83,15 +83,20 @@ struct InprocSimulator::Core final : Serving {
     const std::uint64_t budget = static_cast<std::uint64_t>(timeout.count()) * rate / 1000;
     const auto wall_deadline = Clock::now() + timeout;
     std::uint64_t ran = 0;
+    // as a palp-sim step: the host's bytes go in, up to 1 ms of virtual time runs, the device's
+    // bytes come out (so a reply comes back a chunk of virtual time after its request, as over
+    // the socket, and never in the same tick as the request after it)
     while (pending.empty()) {
       serve_host();
+      std::uint32_t n = 0;
+      if (ran < budget) {
+        n = sim.run(static_cast<std::uint32_t>(std::min<std::uint64_t>(rate / 1000, budget - ran)),
+                    wall_us());
+        ran += n;
+      }
       const std::vector<std::uint8_t> out = sim.take_device_bytes();
       pending.insert(pending.end(), out.begin(), out.end());
       if (!pending.empty() || ran >= budget) break;
-      const std::uint32_t chunk =
-          static_cast<std::uint32_t>(std::min<std::uint64_t>(rate / 1000, budget - ran));
-      const std::uint32_t n = sim.run(chunk, wall_us());
-      ran += n;
       if (n == 0 && sim.holding()) {
         // a contact event holds virtual time until the host reacts: wait for it in wall time
         if (Clock::now() >= wall_deadline) break;
