@@ -31,7 +31,7 @@ struct InstrumentOptions {
   std::string serial = "SIM-0001";             ///< the serial number the device reports
   std::string git_hash = "unknown";            ///< DeviceInfo.git_hash
   bool robot = false;                          ///< the arm carries the probe (and mount_mm is unused)
-  RobotWorldOptions world;                     ///< with robot: frames, start pose, bridge
+  RobotWorldOptions world{};                   ///< with robot: frames, start pose, bridge
 };
 
 /// How the instrument is served: what a control command about the serving side needs.
