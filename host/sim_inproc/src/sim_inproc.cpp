@@ -2,12 +2,12 @@
 // runs virtual time.
 #include "palp/sim_inproc.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <condition_variable>
 #include <cstring>
 #include <mutex>
-#include <stdexcept>
 #include <vector>
 
 #include "palp/error.hpp"

@@ -23,7 +23,9 @@
 //   - the controller's host-heartbeat watchdog counts on the WALL clock (std::chrono::
 //     steady_clock), as palp-sim feeds it: the Probe's heartbeats go out every fifth of the
 //     timeout in wall time, so fast virtual time never trips it, and a host that stops sending
-//     for longer than the timeout trips it at the first tick it lets run afterwards.
+//     for longer than the timeout trips it at the first tick it lets run afterwards. (As with
+//     palp-sim, a Probe whose I/O thread gets no CPU for longer than the timeout trips it too:
+//     here that thread also runs the simulation.)
 // `pace` is refused: pacing against wall time is palp-sim's (use sim://).
 //
 // The robot (InprocOptions::robot): the robot bridge emulator on a Modbus TCP server on a
