@@ -6,7 +6,6 @@
 #include <charconv>
 #include <chrono>
 #include <condition_variable>
-#include <cstring>
 #include <mutex>
 #include <vector>
 
@@ -104,7 +103,7 @@ struct InprocSimulator::Core final : Serving {
       }
     }
     const std::size_t n = std::min(buf.size(), pending.size());
-    std::memcpy(buf.data(), pending.data(), n);
+    std::copy_n(pending.begin(), n, buf.begin());  // (memcpy from an empty vector's null data is UB)
     pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(n));
     return n;
   }

@@ -89,7 +89,9 @@ TEST(SimInproc, ATwentySecondHoldEndsFarWithinItsWaitAndTheHeartbeatNeverTrips) 
   const double before_s = probe.status().t_device_s;
   const palp::ProgramResult r = probe.run(h, 60s);  // 60 s of wall time at most
   EXPECT_EQ(r.end, proto::ProgramEnd::completed);
-  EXPECT_NEAR(r.t_device_s - before_s, 20.0, 0.1);  // load and start took a few ms
+  // virtual time runs on while load and start go out: at least 20 s, a little more
+  EXPECT_GE(r.t_device_s - before_s, 20.0);
+  EXPECT_LT(r.t_device_s - before_s, 22.0);
   EXPECT_EQ(probe.fault().reason, proto::FaultReason::none);
 }
 
@@ -111,8 +113,9 @@ TEST(SimInproc, AHostThatStopsSendingTripsTheHeartbeatWatchdogOnTheWallClock) {
 }
 
 TEST(SimInproc, AContactEventHoldsVirtualTimeUntilTheHostsNextBytes) {
-  // the coil floating at 0.5 A reaches the solid's top 25 mm below the mount (test_indent.cpp)
-  InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
+  // the coil floating at 0.5 A reaches the solid's top 25 mm below the mount (test_indent.cpp);
+  // a hold timeout far beyond the test's waits, however slow the machine
+  InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}, .hold_timeout_ms = 60e3});
   Raw r{sim.transport()};
   proto::Ack ack;
   proto::LoadContactWatch w;
