@@ -19,15 +19,9 @@
 #include "palp/protocol/frame.hpp"
 #include "palp/protocol/schema.hpp"
 #include "palp/protocol/stream.hpp"
+#include "sanitized.hpp"
 
 namespace palp::sim::test {
-
-/// Built with AddressSanitizer: the longest simulations skip (they run in the release build).
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kSanitized = true;
-#else
-inline constexpr bool kSanitized = false;
-#endif
 
 class SimProcess {
  public:

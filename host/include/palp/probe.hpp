@@ -36,6 +36,7 @@
 #include "palp/health.hpp"
 #include "palp/protocol/messages.hpp"
 #include "palp/stream.hpp"
+#include "palp/transport.hpp"
 
 namespace palp {
 
@@ -75,7 +76,7 @@ struct Handshake {
 struct ConnectOptions {
   std::chrono::milliseconds timeout = 2000ms;  ///< default for every request's reply
   std::size_t queue_items = 1u << 20;          ///< stream queue capacity (samples + gaps)
-  bool reconnect = true;                       ///< restore the session after a lost link
+  bool reconnect = true;  ///< restore the session after a lost link (URI-opened transports only)
   std::chrono::milliseconds reconnect_for = 5000ms;  ///< then give up with ConnectionError
   std::string host_software;                   ///< sent in Hello; default "palp-sdk <version>"
 };
@@ -131,6 +132,13 @@ class Probe {
   /// ConfigError (bad URI), ConnectionError (absent), TimeoutError (no DeviceInfo reply) or
   /// VersionError (incompatible: the message names both versions and the fix).
   explicit Probe(const std::string& uri, ConnectOptions options = {});
+  /// The same over a transport the application opened (a test double, the in-process
+  /// simulator's transport: palp/sim_inproc.hpp); uri() is the transport's. Reconnect is off for
+  /// it whatever options.reconnect says: the SDK cannot reopen a transport it did not open, so a
+  /// lost link makes every later device call throw ConnectionError saying so, and the
+  /// application constructs a new Probe with a new transport. Throws as the URI constructor
+  /// does (ConfigError for a null transport).
+  Probe(std::unique_ptr<Transport> transport, ConnectOptions options = {});
   ~Probe();
   Probe(Probe&&) noexcept;
   Probe& operator=(Probe&&) noexcept;

@@ -5,7 +5,14 @@
 //   hid://[serial][?vid=0x1209&pid=0x0001]   hidapi, 64-byte reports (about 64 KB/s at most)
 //   sim://host:port                          palp-sim over TCP
 //   sim:///path/to/socket                    palp-sim over a Unix-domain socket
+//   sim+inproc://PHANTOM[?seed=N&...]        palp-sim linked into this program: no process, no
+//                                            socket, virtual time as fast as the reader reads
 //
+// sim+inproc:// works only in a program that links the palp_sim_inproc library (built with
+// palp-sim; it registers its factory when linked, see set_sim_inproc_factory); elsewhere
+// open_transport throws ConfigError saying so. Its parameters and its time model are in
+// palp/sim_inproc.hpp, which also offers the same as an API (palp::sim::InprocSimulator) for a
+// test that wants the simulator's control channel or the robot bridge on the same simulation.
 // An empty serial picks the only controller present and is an error when there are several.
 // Thread-safety: one thread may read while another writes; two concurrent readers (or writers)
 // are not allowed. The Probe client owns its transport and obeys this.
@@ -18,17 +25,22 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace palp {
 
 /// A parsed transport URI.
 struct Uri {
-  enum class Scheme { usb, hid, sim_tcp, sim_unix };
+  enum class Scheme { usb, hid, sim_tcp, sim_unix, sim_inproc };
   Scheme scheme = Scheme::sim_tcp;
   std::string serial;          ///< usb, hid: the serial number wanted ("" = the only one)
   std::string host;            ///< sim_tcp
   std::uint16_t port = 0;      ///< sim_tcp
   std::string path;            ///< sim_unix
+  std::string phantom;         ///< sim_inproc: the phantom's name ("none": free air)
+  /// sim_inproc: key=value parameters in order, checked by the in-process simulator
+  std::vector<std::pair<std::string, std::string>> parameters;
   std::optional<std::uint16_t> vid, pid;  ///< usb, hid: overrides of the USB identity
   std::string text;            ///< the URI as given
 };
@@ -62,5 +74,11 @@ class Transport {
 std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseconds timeout);
 std::unique_ptr<Transport> open_transport(const std::string& uri,
                                           std::chrono::milliseconds timeout);
+
+/// What opens sim+inproc:// URIs. palp_sim_inproc calls set_sim_inproc_factory when its code
+/// is linked (at static initialisation); applications do not call it.
+using TransportFactory = std::unique_ptr<Transport> (*)(const Uri& uri,
+                                                        std::chrono::milliseconds timeout);
+void set_sim_inproc_factory(TransportFactory factory);
 
 }  // namespace palp

@@ -63,6 +63,14 @@ Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_u
   impl_->uri = uri;
 }
 
+Probe::Probe(std::unique_ptr<Transport> transport, ConnectOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->session = std::make_unique<Session>(std::move(transport), options);
+  impl_->info = to_info(impl_->session->device_info());
+  impl_->handshake = impl_->session->handshake();
+  impl_->uri = impl_->session->uri();
+}
+
 Probe::~Probe() {
   try {
     close();

@@ -92,8 +92,21 @@ std::string nak_text(const char* request, const proto::FieldInfo* fields, std::s
 
 Session::Session(const std::string& uri, const ConnectOptions& options)
     : uri_(uri), options_(options), queue_(options.queue_items) {
-  if (options_.host_software.empty()) options_.host_software = std::string("palp-sdk ") + sdk_version();
   transport_ = open_transport(uri, options_.timeout);
+  handshake_and_start();
+}
+
+Session::Session(std::unique_ptr<Transport> transport, const ConnectOptions& options)
+    : options_(options), queue_(options.queue_items) {
+  if (!transport) throw ConfigError("palp::Probe: the transport given is null");
+  uri_ = transport->uri();
+  transport_ = std::move(transport);
+  reopenable_ = false;
+  handshake_and_start();
+}
+
+void Session::handshake_and_start() {
+  if (options_.host_software.empty()) options_.host_software = std::string("palp-sdk ") + sdk_version();
   transport_bytes_per_s_ = transport_->max_device_bytes_per_s();
   device_ = hello(*transport_, options_.host_software, seq_++, options_.timeout);
   handshake_ = judge_or_throw(device_);
@@ -199,10 +212,12 @@ void Session::io_loop() {
       service_timers();
     } catch (const ConnectionError& e) {
       link_lost(e.what());
-      if (!options_.reconnect) {
+      if (!options_.reconnect || !reopenable_) {
         std::lock_guard lock(mu_);
         dead_ = "the link to " + uri_ + " was lost (" + e.what() +
-                ") and ConnectOptions::reconnect is off: connect again";
+                (reopenable_ ? ") and ConnectOptions::reconnect is off: connect again"
+                             : ") and a transport given to the Probe is never reopened: "
+                               "construct the Probe again with a new transport");
         cv_.notify_all();
         return;
       }
@@ -321,7 +336,7 @@ void Session::link_lost(const std::string& why) {
   link_up_ = false;
   if (waiting_seq_)
     reply_error_ = "the link to " + uri_ + " was lost while waiting for a reply (" + why + ")" +
-                   (options_.reconnect ? "; the SDK is restoring the session: retry" : "");
+                   (options_.reconnect && reopenable_ ? "; the SDK is restoring the session: retry" : "");
   async_.clear();
   cv_.notify_all();
 }

@@ -40,7 +40,10 @@ struct EventLog {
 
 class Session {
  public:
+  /// Opens the transport the URI names; a lost link reopens it (ConnectOptions::reconnect).
   Session(const std::string& uri, const ConnectOptions& options);
+  /// Over a transport the application opened; a lost link is never reopened (probe.hpp).
+  Session(std::unique_ptr<Transport> transport, const ConnectOptions& options);
   ~Session();
 
   /// Sends a request and waits for its reply. A Nak becomes DeviceError; no reply in time,
@@ -82,6 +85,7 @@ class Session {
     double sent_s;
   };
 
+  void handshake_and_start();
   void io_loop();
   void on_bytes(const std::uint8_t* data, std::size_t n);
   void on_reply(const proto::FrameHeader& h, Reply&& r);
@@ -99,6 +103,7 @@ class Session {
   std::string uri_;
   ConnectOptions options_;
   std::shared_ptr<Transport> transport_;
+  bool reopenable_ = true;  // opened from uri_ (an injected transport cannot be reopened)
   std::uint32_t transport_bytes_per_s_ = 0;
   proto::DeviceInfo device_{};
   Handshake handshake_;

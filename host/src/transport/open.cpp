@@ -2,7 +2,14 @@
 #include "palp/transport.hpp"
 #include "transport/factories.hpp"
 
+#include <atomic>
+
 namespace palp {
+namespace {
+std::atomic<TransportFactory> g_sim_inproc{nullptr};
+}  // namespace
+
+void set_sim_inproc_factory(TransportFactory factory) { g_sim_inproc = factory; }
 
 std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseconds timeout) {
   switch (uri.scheme) {
@@ -10,6 +17,12 @@ std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseco
     case Uri::Scheme::hid: return detail::open_hid_transport(uri, timeout);
     case Uri::Scheme::sim_tcp:
     case Uri::Scheme::sim_unix: return detail::open_sim_transport(uri, timeout);
+    case Uri::Scheme::sim_inproc:
+      if (const TransportFactory f = g_sim_inproc.load()) return f(uri, timeout);
+      throw ConfigError("transport URI '" + uri.text +
+                        "': the in-process simulator is not linked into this program: link the "
+                        "palp_sim_inproc library (built with palp-sim), or start palp-sim and "
+                        "use sim://host:port");
   }
   throw ConfigError("transport URI '" + uri.text + "': unknown scheme");
 }

@@ -10,8 +10,8 @@ namespace {
 
 [[noreturn]] void bad(const std::string& text, const std::string& why) {
   throw ConfigError("transport URI '" + text + "': " + why +
-                    " (expected usb://[serial], hid://[serial], sim://host:port or "
-                    "sim:///path/to/socket)");
+                    " (expected usb://[serial], hid://[serial], sim://host:port, "
+                    "sim:///path/to/socket or sim+inproc://phantom[?key=value&...])");
 }
 
 std::uint16_t parse_u16(const std::string& text, std::string_view v, const char* what) {
@@ -25,6 +25,19 @@ std::uint16_t parse_u16(const std::string& text, std::string_view v, const char*
   if (ec != std::errc{} || p != v.data() + v.size() || v.empty() || value > 0xFFFF)
     bad(text, std::string(what) + " '" + std::string(v) + "' is not a number from 0 to 65535");
   return static_cast<std::uint16_t>(value);
+}
+
+/// Calls f(key, value) for each key=value of a query ("a=1&b=2").
+template <class F>
+void for_each_parameter(const std::string& text, std::string_view query, F&& f) {
+  while (!query.empty()) {
+    const std::size_t amp = query.find('&');
+    const std::string_view kv = query.substr(0, amp);
+    query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string_view::npos) bad(text, "parameter '" + std::string(kv) + "' has no value");
+    f(kv.substr(0, eq), kv.substr(eq + 1));
+  }
 }
 
 }  // namespace
@@ -50,6 +63,18 @@ Uri parse_uri(const std::string& text) {
     if (u.port == 0) bad(text, "port 0 is not a port to connect to");
     return u;
   }
+  if (scheme == "sim+inproc") {
+    u.scheme = Uri::Scheme::sim_inproc;
+    const std::size_t q = rest.find('?');
+    u.phantom = rest.substr(0, q);
+    if (u.phantom.empty()) bad(text, "sim+inproc:// needs a phantom name (or none)");
+    if (q != std::string::npos)
+      for_each_parameter(text, std::string_view(rest).substr(q + 1),
+                         [&](std::string_view key, std::string_view value) {
+                           u.parameters.emplace_back(std::string(key), std::string(value));
+                         });
+    return u;
+  }
   if (scheme != "usb" && scheme != "hid") bad(text, "unknown scheme '" + scheme + "'");
   u.scheme = scheme == "usb" ? Uri::Scheme::usb : Uri::Scheme::hid;
   const std::size_t q = rest.find('?');
@@ -60,18 +85,11 @@ Uri parse_uri(const std::string& text) {
   }
   if (rest.find('/') != std::string::npos) bad(text, "a serial number has no '/'");
   u.serial = rest;
-  std::string_view qv(query);
-  while (!qv.empty()) {
-    const std::size_t amp = qv.find('&');
-    const std::string_view kv = qv.substr(0, amp);
-    qv = amp == std::string_view::npos ? std::string_view{} : qv.substr(amp + 1);
-    const std::size_t eq = kv.find('=');
-    if (eq == std::string_view::npos) bad(text, "parameter '" + std::string(kv) + "' has no value");
-    const std::string_view key = kv.substr(0, eq), value = kv.substr(eq + 1);
+  for_each_parameter(text, query, [&](std::string_view key, std::string_view value) {
     if (key == "vid") u.vid = parse_u16(text, value, "vid");
     else if (key == "pid") u.pid = parse_u16(text, value, "pid");
     else bad(text, "unknown parameter '" + std::string(key) + "' (known: vid, pid)");
-  }
+  });
   return u;
 }
 

@@ -1,4 +1,4 @@
-// palp::indent against palp-sim (virtual time, --pace fast): the 1D acceptance of issue 6 at
+// palp::indent against palp-sim linked in (palp/sim_inproc.hpp: virtual time as fast as the SDK reads): the 1D acceptance of issue 6 at
 // position 3 of the paper's three objects, the recording it returns, the displacement limit,
 // and the errors that come before the device does anything.
 //
@@ -18,14 +18,14 @@
 
 #include "palp/indent.hpp"
 #include "palp/probe.hpp"
-#include "sim_process.hpp"
+#include "palp/sim_inproc.hpp"
 
 namespace {
 
 using palp::IndentationPreset;
 using palp::IndentationRun;
 using palp::IndentationSettings;
-using palp::sim::test::SimProcess;
+using palp::sim::InprocSimulator;
 using testing::HasSubstr;
 using namespace std::chrono_literals;
 
@@ -39,9 +39,8 @@ constexpr Paper kSolid{"solid_1d", 2.935, 0.74555};
 constexpr Paper kHollow{"hollow_1d", 4.49, 0.3249};
 
 IndentationRun indent_at_position_3(const char* phantom, int reps, double* wall_s = nullptr) {
-  SimProcess sim({"--phantom", phantom, "--mount-mm", "27", "0", "-25"}, false);
-  EXPECT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = phantom, .mount_mm = {27, 0, -25}});
+  palp::Probe probe(sim.transport());
   IndentationSettings s = IndentationSettings::preset(IndentationPreset::one_d);
   s.repetitions = reps;
   s.stream_rate_Hz = 200;  // 20 samples per 100 ms step
@@ -129,9 +128,8 @@ TEST(Indent, InsertPosition3HasDelta0AndKoWithinTenPercentOfThePaper) {
 
 TEST(Indent, ACoilLeftFloatingByAContactWatchIsReleasedThenZeroedAndFloatedAgain) {
   // the toucher leaves the coil holding 0.5 A on the surface; the 2D preset (25 ms steps) follows
-  SimProcess sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
+  palp::Probe probe(sim.transport());
   palp::ContactWatchProgram w;
   w.hold_current_A = 0.5f;
   w.threshold_counts = 500;
@@ -158,9 +156,8 @@ TEST(Indent, ACoilLeftFloatingByAContactWatchIsReleasedThenZeroedAndFloatedAgain
 }
 
 TEST(Indent, CancelledMidRampStopsTheRampKeepsWhatWasRecordedAndLeavesZeroCurrent) {
-  SimProcess sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
+  palp::Probe probe(sim.transport());
   IndentationSettings s = IndentationSettings::preset(IndentationPreset::one_d);
   s.stream_rate_Hz = 200;
   double fraction = 0;
@@ -177,9 +174,8 @@ TEST(Indent, CancelledMidRampStopsTheRampKeepsWhatWasRecordedAndLeavesZeroCurren
 }
 
 TEST(Indent, BadSettingsAreRefusedBeforeTheDeviceMoves) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   IndentationSettings s = IndentationSettings::preset(IndentationPreset::two_d);
   s.stream_rate_Hz = 5000;
   try {

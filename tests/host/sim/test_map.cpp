@@ -1,5 +1,5 @@
-// The 2D study (issue 6's acceptance, paper §V): a 9 x 9 stiffness map of the pad on palp-sim,
-// with the arm placing the probe, in virtual time.
+// The 2D study (issue 6's acceptance, paper §V): a 9 x 9 stiffness map of the pad on palp-sim
+// linked in (palp/sim_inproc.hpp), with the arm placing the probe, in virtual time.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,14 +11,15 @@
 #include "palp/result.hpp"
 #include "palp/probe.hpp"
 #include "palp/robot.hpp"
-#include "sim_process.hpp"
+#include "palp/sim_inproc.hpp"
+#include "sanitized.hpp"
 
 namespace {
 
-using palp::sim::test::SimProcess;
+using palp::sim::InprocSimulator;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-palp::Rig pad_rig(const SimProcess& sim) {
+palp::Rig pad_rig(const InprocSimulator& sim) {
   palp::Rig rig;
   rig.robot_uri = sim.robot_uri();
   rig.probe_uri = sim.uri();
@@ -57,9 +58,8 @@ using palp::sim::test::kSanitized;
 
 TEST(Map, NineByNinePadShowsTheShallowChannelColumnsSofterAndTheDeepChannelRowsNot) {
   if (kSanitized) GTEST_SKIP() << "81 indentations of 37.5 s device time: the release build runs it";
-  SimProcess sim({"--phantom", "pad_2d", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const auto dir = fresh_dir("palp_map_9x9");
   // the 2D protocol with one repetition instead of three (the test's time: 81 x 12.5 s of
@@ -122,9 +122,8 @@ TEST(Map, NineByNinePadShowsTheShallowChannelColumnsSofterAndTheDeepChannelRowsN
 }
 
 TEST(Map, CancelledMapResumesFromTheFirstUnfinishedPointWithoutRepeats) {
-  SimProcess sim({"--phantom", "pad_2d", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const auto dir = fresh_dir("palp_map_resume");
   palp::MapOptions o;

@@ -1,4 +1,5 @@
-// The calibration helpers against palp-sim, each with a known answer: an offset put into the
+// The calibration helpers against palp-sim linked in (palp/sim_inproc.hpp), each with a known
+// answer: an offset put into the
 // calibration on purpose is found and taken out again; homing finds the rear end stop the
 // simulated coil is parked against; all of it in RAM, kept in zeroing() for the sidecar.
 #include <gmock/gmock.h>
@@ -6,18 +7,17 @@
 
 #include "palp/probe.hpp"
 #include "palp/recording.hpp"
-#include "sim_process.hpp"
+#include "palp/sim_inproc.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
-using palp::sim::test::SimProcess;
+using palp::sim::InprocSimulator;
 using testing::HasSubstr;
 
 TEST(ProbeCalibration, PressureZeroTakesOutAKnownOffsetOnEveryChannel) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   palp::Calibration c = probe.calibration();
   for (std::size_t k = 0; k < 6; ++k) c.pressure_offset_Pa[k] = -10.0f * static_cast<float>(k + 1);
   probe.set_calibration(c);  // channel k now reads +10 (k+1) Pa with nothing pressing on it
@@ -31,9 +31,8 @@ TEST(ProbeCalibration, PressureZeroTakesOutAKnownOffsetOnEveryChannel) {
 }
 
 TEST(ProbeCalibration, CurrentOffsetZeroFindsAKnownSenseOffsetFromTheLoopsVoltage) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   palp::Calibration c = probe.calibration();
   c.current_offset_A = 0.02f;  // the loop now drives a real +20 mA to read zero
   probe.set_calibration(c);
@@ -43,9 +42,8 @@ TEST(ProbeCalibration, CurrentOffsetZeroFindsAKnownSenseOffsetFromTheLoopsVoltag
 }
 
 TEST(ProbeCalibration, HomingSetsTheStrokeOriginAtTheRearEndStop) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   const std::int32_t parked = probe.status().encoder_counts;  // a new plant parks at the stop
   const std::int32_t origin = probe.home(-0.3, 0.5);
   EXPECT_NEAR(origin, parked, 2);
@@ -57,9 +55,8 @@ TEST(ProbeCalibration, HomingSetsTheStrokeOriginAtTheRearEndStop) {
 }
 
 TEST(ProbeCalibration, HelpersRefuseWhileTheApplicationStreams) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   probe.configure_stream({.rate_Hz = 1000.0});
   probe.start_stream();
   try {
@@ -73,9 +70,8 @@ TEST(ProbeCalibration, HelpersRefuseWhileTheApplicationStreams) {
 }
 
 TEST(ProbeRecording, AStreamWrittenAsARecordingReadsBackBitExact) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   probe.configure_stream({.rate_Hz = 2000.0});
   probe.start_stream();
   palp::RampProgram r;

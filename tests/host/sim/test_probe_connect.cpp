@@ -1,16 +1,20 @@
-// The probe client against palp-sim over a real socket: the handshake and its verdicts, device
-// info, requests and the errors a person reads when something is refused or missing.
+// The probe client against palp-sim: the handshake and its verdicts, device info, requests and
+// the errors a person reads when something is refused or missing. Over a real socket where the
+// socket or the pace matters (connecting, nothing listening, a wait in real time); the rest
+// against palp-sim linked in (palp/sim_inproc.hpp).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "palp/probe.hpp"
 #include "palp/protocol/schema.hpp"
 #include "palp/protocol/verdict_text.hpp"
+#include "palp/sim_inproc.hpp"
 #include "sim_process.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
+using palp::sim::InprocSimulator;
 using palp::sim::test::SimProcess;
 using testing::HasSubstr;
 
@@ -28,11 +32,10 @@ TEST(ProbeConnect, HandshakeWithTheSimulatorIsCompatibleAndNamesTheDevice) {
 }
 
 std::string version_error(const std::string& announce) {
-  SimProcess sim({}, false);
-  if (!sim.ok()) return "palp-sim did not start";
+  InprocSimulator sim;
   if (sim.control("announce " + announce) != "ok") return "announce refused";
   try {
-    palp::Probe probe(sim.uri());
+    palp::Probe probe(sim.transport());
   } catch (const palp::VersionError& e) {
     return e.what();
   }
@@ -56,15 +59,14 @@ TEST(ProbeConnect, SameVersionWithAnotherSchemaHashIsRefusedNamingBothHashes) {
 }
 
 TEST(ProbeConnect, ANewerMinorOnTheDeviceIsCompatibleUnlessTheMajorIsZero) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
+  InprocSimulator sim;
   const std::string newer = std::to_string(palp::proto::kProtocolMajor) + "." +
                             std::to_string(palp::proto::kProtocolMinor + 1) + " 0x11111111";
   ASSERT_EQ(sim.control("announce " + newer), "ok");
   if (palp::proto::kProtocolMajor == 0) {
-    EXPECT_THROW(palp::Probe probe(sim.uri()), palp::VersionError);
+    EXPECT_THROW(palp::Probe probe(sim.transport()), palp::VersionError);
   } else {
-    palp::Probe probe(sim.uri());
+    palp::Probe probe(sim.transport());
     EXPECT_FALSE(probe.handshake().missing_features);
     EXPECT_EQ(probe.info().protocol_minor, palp::proto::kProtocolMinor + 1);
   }
@@ -87,9 +89,8 @@ TEST(ProbeConnect, NothingListeningIsAConnectionErrorThatSaysWhatToDo) {
 }
 
 TEST(ProbeConnect, AnOutOfRangeFieldIsRefusedNamingTheMessageTheCodeAndTheField) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   palp::RampProgram r;
   r.step_A = 0.0f;  // below its range [0.0001, 4]
   try {
@@ -106,9 +107,8 @@ TEST(ProbeConnect, AnOutOfRangeFieldIsRefusedNamingTheMessageTheCodeAndTheField)
 }
 
 TEST(ProbeConnect, StatusParamsAndCalibrationRoundTripInSiUnits) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   const palp::Status st = probe.status();
   EXPECT_EQ(st.state, palp::proto::DeviceState::idle);
   EXPECT_DOUBLE_EQ(st.z_m, st.encoder_counts * 1e-6);
@@ -152,9 +152,8 @@ TEST(ProbeConnect, AHoldProgramRunsToItsEndAndAShortWaitTimesOutWithHealth) {
 }
 
 TEST(ProbeConnect, AfterCloseIdentityStaysReadableAndDeviceCallsSayTheProbeIsClosed) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   probe.close();
   probe.close();  // twice is fine
   EXPECT_EQ(probe.info().serial, "SIM-0001");

@@ -1,5 +1,7 @@
 // Streaming from palp-sim through the SDK: order, no loss at 10 kHz, every loss reported as a
 // gap record with its source, back-pressure, the device-to-host clock mapping and reconnect.
+// Reconnect and the clock mapping's pace run palp-sim as a process over a socket (restarting
+// and killing it, pacing in real time); the rest palp-sim linked in (palp/sim_inproc.hpp).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -7,6 +9,7 @@
 #include <thread>
 
 #include "palp/probe.hpp"
+#include "palp/sim_inproc.hpp"
 #include "sim_process.hpp"
 
 namespace {
@@ -15,6 +18,7 @@ using namespace std::chrono_literals;
 using palp::Gap;
 using palp::Sample;
 using palp::StreamItem;
+using palp::sim::InprocSimulator;
 using palp::sim::test::SimProcess;
 using testing::HasSubstr;
 
@@ -41,9 +45,8 @@ struct Tally {
 };
 
 TEST(ProbeStream, AMillionSamplesAt10kHzArriveInOrderWithNoneLost) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   const palp::StreamInfo info = probe.configure_stream({.rate_Hz = 10000.0});
   EXPECT_DOUBLE_EQ(info.period_s, 1e-4);
   EXPECT_EQ(info.batch_samples, 40);  // all 11 channels: 24-byte samples, 960 data bytes
@@ -79,9 +82,8 @@ TEST(ProbeStream, AMillionSamplesAt10kHzArriveInOrderWithNoneLost) {
 }
 
 TEST(ProbeStream, FramesTheSimulatorDropsBecomeTransportGapsThatAccountForEveryIndex) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   probe.configure_stream({.rate_Hz = 10000.0});
   probe.start_stream();
   ASSERT_EQ(sim.control("drop-frames 5"), "ok");
@@ -106,11 +108,10 @@ TEST(ProbeStream, FramesTheSimulatorDropsBecomeTransportGapsThatAccountForEveryI
 }
 
 TEST(ProbeStream, AFullHostQueueDropsTheNewestSamplesAsOneHostQueueGap) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
+  InprocSimulator sim;
   palp::ConnectOptions o;
   o.queue_items = 1000;
-  palp::Probe probe(sim.uri(), o);
+  palp::Probe probe(sim.transport(), o);
   probe.configure_stream({.rate_Hz = 10000.0});
   probe.start_stream();
   std::this_thread::sleep_for(300ms);  // 300 ms at >= 1x: far more than 1000 samples
@@ -209,9 +210,8 @@ TEST(ProbeStream, ALinkThatStaysDownFailsEveryCallWithWhyAndForHowLong) {
 }
 
 TEST(ProbeStream, ACallbackReceivesTheItemsInOrderInsteadOfTheQueue) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim;
+  palp::Probe probe(sim.transport());
   std::mutex mu;
   Tally t;
   probe.on_stream([&](const StreamItem& item) {
@@ -236,10 +236,9 @@ TEST(ProbeStream, ACallbackReceivesTheItemsInOrderInsteadOfTheQueue) {
 }
 
 TEST(ProbeShutdown, ClosingDuringAProgramLeavesTheDeviceWithZeroCurrent) {
-  SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok());
+  InprocSimulator sim;
   {
-    palp::Probe probe(sim.uri());
+    palp::Probe probe(sim.transport());
     palp::HoldProgram h;
     h.current_A = 0.4f;
     h.duration_s = 0.0f;  // until stopped
@@ -247,7 +246,7 @@ TEST(ProbeShutdown, ClosingDuringAProgramLeavesTheDeviceWithZeroCurrent) {
     probe.start();
     EXPECT_EQ(probe.status().program_state, palp::proto::ProgramState::running);
   }  // the destructor closes
-  palp::Probe again(sim.uri());
+  palp::Probe again(sim.transport());
   const palp::Status st = again.status();
   EXPECT_NE(st.program_state, palp::proto::ProgramState::running);
   EXPECT_EQ(st.i_cmd_A, 0.0);

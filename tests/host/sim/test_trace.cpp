@@ -1,4 +1,5 @@
-// Surface tracing against palp-sim's probe and robot-bridge emulator over real sockets, with the
+// Surface tracing against palp-sim linked in (palp/sim_inproc.hpp: the probe's transport in
+// process, the robot-bridge emulator on a loopback Modbus TCP port, one simulation), with the
 // model's own surface as the truth (issue 5's acceptance).
 #include <gtest/gtest.h>
 
@@ -12,16 +13,16 @@
 #include "palp/protocol/robot_bridge/pose.hpp"
 #include "palp/robot.hpp"
 #include "palp/trace.hpp"
-#include "sim_process.hpp"
+#include "palp/sim_inproc.hpp"
 
 namespace {
 
-using palp::sim::test::SimProcess;
+using palp::sim::InprocSimulator;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // palp-sim's defaults: the phantom frame at (600, 0, 300) mm in the base frame, rotated by
 // C = 180 deg (phantom +z = base -z); the probe's tip at stroke origin 200 mm along the flange z.
-palp::Rig sim_rig(const SimProcess& sim) {
+palp::Rig sim_rig(const InprocSimulator& sim) {
   palp::Rig rig;
   rig.robot_uri = sim.robot_uri();
   rig.probe_uri = sim.uri();
@@ -79,9 +80,8 @@ Errors compare_with_model(const palp::TracedSurface& s, const std::string& phant
 }
 
 TEST(Trace, NineByNineOnA15DegreeWavyPadLandsWithin20umOfTheModelSurface) {
-  SimProcess sim({"--phantom", "pad_2d_steep", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "pad_2d_steep", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const palp::Rig rig = sim_rig(sim);
   const palp::TracedSurface s = palp::trace_surface(probe, *robot, rig, pad_plan(9));
@@ -97,9 +97,8 @@ TEST(Trace, NineByNineOnA15DegreeWavyPadLandsWithin20umOfTheModelSurface) {
 }
 
 TEST(Trace, OnAPlaneTilted10DegreesNormalsAreWithinHalfADegree) {
-  SimProcess sim({"--phantom", "plane_tilted_10", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "plane_tilted_10", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const palp::TracedSurface s = palp::trace_surface(probe, *robot, sim_rig(sim), pad_plan(5));
   ASSERT_TRUE(s.complete) << s.stopped_because;
@@ -112,9 +111,8 @@ TEST(Trace, OnAPlaneTilted10DegreesNormalsAreWithinHalfADegree) {
 }
 
 TEST(Trace, CancelledMidPlanLeavesTheArmAtTheSafeHeightWithZeroCurrentAndResumesWithoutRepeats) {
-  SimProcess sim({"--phantom", "pad_2d", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const palp::Rig rig = sim_rig(sim);
   const palp::Plan plan = pad_plan(3);
@@ -154,9 +152,8 @@ TEST(Trace, CancelledMidPlanLeavesTheArmAtTheSafeHeightWithZeroCurrentAndResumes
 namespace {
 
 TEST(TouchOff, ThreeTouchesOnThe10DegreePlaneRegisterItsNormalAndAnOriginOnTheSurface) {
-  SimProcess sim({"--phantom", "plane_tilted_10", "--robot-port", "0"}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  palp::Probe probe(sim.uri());
+  InprocSimulator sim({.phantom = "plane_tilted_10", .robot = true});
+  palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   palp::Rig rig = sim_rig(sim);
   rig.work_object.reset();

@@ -39,6 +39,28 @@ TEST(Uri, EmptySerialMeansTheOnlyDevice) {
   EXPECT_FALSE(u.vid.has_value());
 }
 
+TEST(Uri, SimInprocGivesThePhantomAndItsParametersInOrder) {
+  const Uri u = parse_uri("sim+inproc://solid_1d?seed=3&mount_mm=27,0,-25");
+  EXPECT_EQ(u.scheme, Uri::Scheme::sim_inproc);
+  EXPECT_EQ(u.phantom, "solid_1d");
+  using P = std::pair<std::string, std::string>;
+  EXPECT_EQ(u.parameters, (std::vector<P>{{"seed", "3"}, {"mount_mm", "27,0,-25"}}));
+  EXPECT_TRUE(parse_uri("sim+inproc://none").parameters.empty());
+}
+
+TEST(Uri, SimInprocWhereTheSimulatorIsNotLinkedIsAConfigErrorNamingTheLibrary) {
+  // sdk_unit_tests does not link palp_sim_inproc
+  try {
+    palp::open_transport("sim+inproc://none", std::chrono::milliseconds(100));
+    FAIL() << "opened";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "transport URI 'sim+inproc://none': the in-process simulator is not linked into "
+              "this program: link the palp_sim_inproc library (built with palp-sim), or start "
+              "palp-sim and use sim://host:port");
+  }
+}
+
 std::string error_of(const std::string& uri) {
   try {
     parse_uri(uri);
@@ -58,4 +80,6 @@ TEST(Uri, MalformedUrisNameTheProblem) {
   EXPECT_THAT(error_of("usb://A?vid=zz"), HasSubstr("vid 'zz' is not a number"));
   EXPECT_THAT(error_of("usb://A?speed=1"), HasSubstr("unknown parameter 'speed'"));
   EXPECT_THAT(error_of("usb://A?vid"), HasSubstr("parameter 'vid' has no value"));
+  EXPECT_THAT(error_of("sim+inproc://"), HasSubstr("sim+inproc:// needs a phantom name (or none)"));
+  EXPECT_THAT(error_of("sim+inproc://none?seed"), HasSubstr("parameter 'seed' has no value"));
 }

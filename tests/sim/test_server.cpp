@@ -1,0 +1,179 @@
+// sim::Server, palp-sim's loop, driven step by step in the test's thread with real loopback
+// sockets: pacing at a factor, the stall while the host has not drained, a held contact event,
+// and a control-channel command.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "palp/protocol/frame.hpp"
+#include "palp/protocol/stream.hpp"
+#include "palp/sim/server.hpp"
+
+namespace palp::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+/// A blocking loopback client socket.
+struct Client {
+  /// rcvbuf_bytes > 0: a small receive buffer, so a host that does not read backs up soon
+  explicit Client(std::uint16_t port, int rcvbuf_bytes = 0) : fd(::socket(AF_INET, SOCK_STREAM, 0)) {
+    if (rcvbuf_bytes > 0) ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes, sizeof rcvbuf_bytes);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+      ::close(fd);
+      fd = -1;
+    }
+  }
+  ~Client() {
+    if (fd >= 0) ::close(fd);
+  }
+  void send_text(const std::string& s) const { ASSERT_EQ(::write(fd, s.data(), s.size()), static_cast<ssize_t>(s.size())); }
+  template <class M>
+  void send(const M& m, proto::u16 seq) const {
+    std::vector<proto::u8> w(proto::kMaxWireFrame);
+    w.resize(proto::encode_message(m, seq, 0, w.data(), w.size()));
+    send_text(std::string(w.begin(), w.end()));
+  }
+  /// What has arrived, without waiting.
+  std::string take() const {
+    std::string got;
+    pollfd p{fd, POLLIN, 0};
+    char buf[65536];
+    while (::poll(&p, 1, 0) == 1) {
+      const ssize_t n = ::read(fd, buf, sizeof buf);
+      if (n <= 0) break;
+      got.append(buf, static_cast<std::size_t>(n));
+    }
+    return got;
+  }
+  int fd;
+};
+
+std::unique_ptr<Server> make_server(double pace, InstrumentOptions o = {}) {
+  return std::make_unique<Server>(std::make_unique<Instrument>(std::move(o)),
+                                  ByteServer::tcp("127.0.0.1", 0), ByteServer::tcp("127.0.0.1", 0),
+                                  nullptr, pace);
+}
+
+std::uint16_t control_port(const Server& s) {
+  const std::string b = s.banner();
+  return static_cast<std::uint16_t>(std::stoul(b.substr(b.rfind(':') + 1)));
+}
+
+/// Steps until pred() or the wall time is up.
+template <class Pred>
+bool step_until(Server& s, Pred&& pred, std::chrono::milliseconds within = 5s) {
+  const auto end = Clock::now() + within;
+  while (!pred()) {
+    if (Clock::now() > end) return false;
+    s.step();
+  }
+  return true;
+}
+
+TEST(SimServer, AtHalfRealTimeVirtualTimeNeverRunsAheadOfHalfTheWallTime) {
+  auto s = make_server(0.5);
+  Client host(s->device().port());
+  ASSERT_GE(host.fd, 0);
+  s->step();  // accepts: the pace counts from here
+  const auto t0 = Clock::now();
+  double worst_lead_s = -1;
+  while (Clock::now() - t0 < 300ms) {
+    s->step();
+    const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    worst_lead_s = std::max(worst_lead_s, s->instrument().simulation().virtual_s() - 0.5 * wall_s);
+  }
+  EXPECT_LE(worst_lead_s, 1e-3);  // at most the step's own chunk ahead
+  EXPECT_GT(s->instrument().simulation().virtual_s(), 0.0);  // and it did run
+}
+
+TEST(SimServer, AHostThatDoesNotDrainStopsVirtualTimeAndNothingIsDropped) {
+  auto s = make_server(0);
+  Client host(s->device().port(), 4096);
+  ASSERT_GE(host.fd, 0);
+  host.send(proto::StreamConfigure{proto::kAllChannels, 1, 40}, 1);
+  host.send(proto::StreamStart{}, 2);
+  // the host reads nothing: the socket buffers and the server's queue fill, then time stops
+  const Simulation& sim = s->instrument().simulation();
+  std::uint64_t last = 0;
+  int still = 0;
+  ASSERT_TRUE(step_until(*s, [&] {
+    still = sim.ticks() == last ? still + 1 : 0;
+    last = sim.ticks();
+    return still >= 200;
+  }, 60s));
+  EXPECT_EQ(sim.counters().frames_dropped, 0u);
+  // reading lets it go on
+  host.take();
+  const std::uint64_t stalled = sim.ticks();
+  EXPECT_TRUE(step_until(*s, [&] {
+    host.take();
+    return sim.ticks() > stalled + 2000;
+  }, 60s));
+}
+
+TEST(SimServer, AContactEventHoldsVirtualTimeUntilTheHostsNextFrame) {
+  // the coil floating at 0.5 A reaches the solid's top 25 mm below the mount; a hold timeout
+  // far beyond the test's steps, however slow the machine
+  auto s = make_server(0, {.phantom = "solid_1d", .mount_mm = {27, 0, -25}, .hold_timeout_ms = 60e3});
+  Client host(s->device().port());
+  ASSERT_GE(host.fd, 0);
+  proto::LoadContactWatch w;
+  w.hold_current_A = 0.5f;
+  w.threshold_counts = 500;
+  host.send(w, 1);
+  host.send(proto::ProgramStart{}, 2);
+  Simulation& sim = s->instrument().simulation();
+  ASSERT_TRUE(step_until(*s, [&] {
+    host.take();
+    return sim.holding();
+  }));
+  const std::uint64_t held = sim.ticks();
+  for (int k = 0; k < 100; ++k) s->step();  // well within the 1 s hold timeout
+  EXPECT_EQ(sim.ticks(), held);
+  host.send(proto::Heartbeat{}, 3);
+  ASSERT_TRUE(step_until(*s, [&] { return sim.ticks() > held; }));
+  EXPECT_FALSE(sim.holding());
+  EXPECT_EQ(sim.counters().holds, 1u);
+  EXPECT_EQ(sim.counters().hold_timeouts, 0u);
+}
+
+TEST(SimServer, AControlLineIsAnsweredAndChangesThePace) {
+  auto s = make_server(1);
+  Client control(control_port(*s));
+  ASSERT_GE(control.fd, 0);
+  control.send_text("pace 4\nstatus\nmount 1 2\n");
+  std::string answers;
+  ASSERT_TRUE(step_until(*s, [&] {
+    answers += control.take();
+    return std::count(answers.begin(), answers.end(), '\n') >= 3;
+  }));
+  EXPECT_EQ(s->pace(), 4.0);
+  EXPECT_EQ(answers.substr(0, 3), "ok\n");
+  EXPECT_NE(answers.find("ok virtual_s="), std::string::npos);
+  EXPECT_NE(answers.find(" pace=4 client=0 "), std::string::npos);
+  EXPECT_NE(answers.find("\nerror: mount"), std::string::npos) << answers;
+}
+
+TEST(SimServer, AModbusServerWithoutTheRobotOnIsRefused) {
+  EXPECT_THROW(Server(std::make_unique<Instrument>(InstrumentOptions{}),
+                      ByteServer::tcp("127.0.0.1", 0), ByteServer::tcp("127.0.0.1", 0),
+                      std::make_unique<ModbusServer>("127.0.0.1", 0), 1.0),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace palp::sim
