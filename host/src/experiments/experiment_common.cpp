@@ -149,28 +149,12 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
   return out;
 }
 
-Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
-                     const ProgramRecording& r) {
-  Sidecar side;
-  side.device = device_json(device);
-  side.device["uri"] = probe.uri();
-  const Calibration cal = probe.calibration();
-  side.calibration = calibration_json(cal);
-  if (cal.stroke_origin_valid != 0) {
-    side.stroke_origin_z_mm = cal.stroke_origin_counts * 1e-3;
-  } else {
-    side.stroke_origin_z_mm_reason = "the device's stroke origin is not homed (palpctl calibrate home)";
-  }
-  for (const auto& z : probe.zeroing()) side.zeroing.push_back(zeroing_json(z));
-  const StreamInfo& stream = probe.stream_info();
+Sidecar base_sidecar(Probe& probe, const std::string& experiment, const ProgramRecording& r) {
+  Sidecar side = setup_sidecar(probe);
   side.extra["experiment"] = experiment;
-  side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
-                          {"period_s", stream.period_s},
-                          {"channels", stream.channels}};
   side.extra["gaps"] = r.gaps;
   side.extra["samples_missing"] = r.samples_missing;
   side.extra["interrupted"] = r.interrupted;
-  side.sdk_version = sdk_version();
   return side;
 }
 

@@ -53,10 +53,9 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
                                 const std::function<void(double, const Sample&)>& progress,
                                 const std::function<bool()>& cancelled);
 
-/// The sidecar's common part: device (with uri), calibration, stroke origin (or why not),
-/// zeroing, sdk version, and in extra "experiment", "stream", "gaps", "samples_missing",
-/// "interrupted".
-Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
-                     const ProgramRecording& r);
+/// The sidecar's common part: setup_sidecar (result.hpp: device with uri, calibration, stroke
+/// origin or why not, zeroing, sdk version, "stream") and in extra "experiment", "gaps",
+/// "samples_missing", "interrupted".
+Sidecar base_sidecar(Probe& probe, const std::string& experiment, const ProgramRecording& r);
 
 }  // namespace palp::experiment

@@ -254,7 +254,7 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
   run.samples_missing = rec.samples_missing;
   run.recording = std::move(rec.recording);
 
-  Sidecar side = experiment::base_sidecar(probe, run.device, "identification", rec);
+  Sidecar side = experiment::base_sidecar(probe, "identification", rec);
   side.program = {{"kind", stepped ? "sweep" : "multisine"},
                   {"parameters", stepped ? sweep_json(run.sweep) : multisine_json(run.multisine)},
                   {"result",

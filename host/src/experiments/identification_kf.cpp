@@ -92,7 +92,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
                         : analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
 
   // the sidecar keeps the calibration in force while the staircase ran
-  Sidecar side = experiment::base_sidecar(probe, device, "kf_calibration", rec);
+  Sidecar side = experiment::base_sidecar(probe, "kf_calibration", rec);
   if (settings.write) {
     Calibration cal = probe.calibration();
     cal.kf_position_counts = {};

@@ -91,7 +91,7 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
     rec.rep = split_repetitions_at_current_minima(*rec.i_cmd_A);
   }
 
-  Sidecar side = experiment::base_sidecar(probe, run.device, "indentation", recorded);
+  Sidecar side = experiment::base_sidecar(probe, "indentation", recorded);
   side.program = {{"kind", "ramp"},
                   {"parameters", ramp_json(settings)},
                   {"result",

@@ -12,7 +12,8 @@
 //   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
 //
 // A member is a double, an optional double (null in the file when absent), an int, a uint32, a
-// size_t, a bool, a string or a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]). The file
+// size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]) or a
+// vector of doubles (an array, each element scaled; the Source's numbers(key) reads it). The file
 // value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
 // reader takes a Source, the format's checked access to one JSON
 // object with its own error messages (JsonSource below for "where: \"key\" must be a number";
@@ -27,6 +28,7 @@
 #include <span>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -61,7 +63,8 @@ inline double from_file(double file_value, double scale) {
 template <class T>
 struct Field {
   using Member = std::variant<double T::*, std::optional<double> T::*, int T::*, std::uint32_t T::*,
-                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*>;
+                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*,
+                              std::vector<double> T::*>;
   const char* key;
   Member member;
   double scale = 1.0;  ///< file value = SI value x scale
@@ -90,7 +93,11 @@ void write_fields(Json& j, const T& v, std::span<const Field<T>> table) {
           if constexpr (std::is_same_v<M, double>) j[f.key] = x * f.scale;
           else if constexpr (std::is_same_v<M, std::optional<double>>) j[f.key] = x ? Json(*x * f.scale) : Json(nullptr);
           else if constexpr (std::is_same_v<M, Pose>) j[f.key] = pose_mm_deg(x);
-          else j[f.key] = x;
+          else if constexpr (std::is_same_v<M, std::vector<double>>) {
+            Json a = Json::array();
+            for (double e : x) a.push_back(e * f.scale);
+            j[f.key] = std::move(a);
+          } else j[f.key] = x;
         },
         f.member);
   }
@@ -102,8 +109,9 @@ void write_fields(Json& j, const T& v, const Field<T> (&table)[N]) {
 
 /// Every field of `table` but the Need::written ones from `src`, a format's checked access to a
 /// JSON object: has(key) (present and not null), number(key, range), integer(key, range),
-/// boolean(key), text(key) and, where the format has poses, pose(key), each throwing its ConfigError when the key is absent or
-/// the value is not of its kind or range. An optional key that is absent is skipped.
+/// boolean(key), text(key) and, where the format has them, pose(key) and numbers(key) (a vector
+/// of doubles), each throwing its ConfigError when the key is absent or the value is not of its
+/// kind or range. An optional key that is absent is skipped.
 // GCC 12 sees the visit's store into an optional<double> member of a struct that holds none (the
 // alternative is instantiated for every table) as a write past its end: a false positive.
 #if defined(__GNUC__) && !defined(__clang__)
@@ -126,7 +134,14 @@ void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
             x = static_cast<M>(src.integer(f.key, f.range));
           else if constexpr (std::is_same_v<M, bool>) x = src.boolean(f.key);
           else if constexpr (std::is_same_v<M, std::string>) x = src.text(f.key);
-          else if constexpr (requires { src.pose(f.key); }) x = src.pose(f.key);
+          else if constexpr (std::is_same_v<M, std::vector<double>>) {
+            if constexpr (requires { src.numbers(f.key); }) {
+              x.clear();
+              for (double e : src.numbers(f.key)) x.push_back(from_file(e, f.scale));
+            } else {
+              throw ConfigError(std::string(f.key) + ": this format's reader takes no arrays");
+            }
+          } else if constexpr (requires { src.pose(f.key); }) x = src.pose(f.key);
           else throw ConfigError(std::string(f.key) + ": this format's reader takes no poses");
         },
         f.member);
