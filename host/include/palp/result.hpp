@@ -112,6 +112,22 @@ DeviceInfo device_info_from_json(const nlohmann::json& j, const std::string& whe
 /// The calibration (lab units) and a zeroing record, as in the sidecar.
 nlohmann::json calibration_json(const Calibration& c);
 nlohmann::json zeroing_json(const ZeroingRecord& z);
+/// A device program's parameters as the sidecar's program.parameters holds them, in lab units
+/// (each f32 as its shortest decimal): hold current_A, seconds; ramp start_A, stop_A, step_A,
+/// dwell_s, reps, unload, displacement_limit_mm; sine offset_A, amplitude_A, frequency_Hz,
+/// cycles; sweep and multisine the message's own field names (phase_mode by its name).
+nlohmann::json program_json(const HoldProgram& m);
+nlohmann::json program_json(const RampProgram& m);
+nlohmann::json program_json(const SineProgram& m);
+nlohmann::json program_json(const SweepProgram& m);
+nlohmann::json program_json(const MultisineProgram& m);
+/// program_json read back into `m` (the same keys; others are ignored). ConfigError
+/// "where: \"key\" must be a number", ... for a missing or mistyped key.
+void read_program(const nlohmann::json& parameters, const std::string& where, HoldProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, RampProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, SineProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, SweepProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, MultisineProgram& m);
 /// What the device and the SDK know before the first sample, for a recording's sidecar: the SDK
 /// version, device (device_json with "uri"), calibration, stroke_origin_z_mm (or its reason),
 /// zeroing and, in extra, "stream" (rate_Hz, period_s, channels, batch_samples of the configured

@@ -35,14 +35,6 @@ RecordingRow row_of(const Sample& s) {
 
 }  // namespace
 
-double f32(float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  double d = 0;
-  std::from_chars(buf, r.ptr, d);
-  return d;
-}
-
 void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled) {
   while (probe.status().t_device_s < until_s) {
     if (cancelled && cancelled()) return;

@@ -12,14 +12,16 @@
 //   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
 //
 // A member is a double, an optional double (null in the file when absent), an int, a uint32, a
-// size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]) or a
-// vector of doubles (an array, each element scaled; the Source's numbers(key) reads it). The file
+// size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]), a
+// vector of doubles (an array, each element scaled; the Source's numbers(key) reads it), or a
+// protocol message's float (written as its shortest decimal, f32) or uint16. The file
 // value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
 // reader takes a Source, the format's checked access to one JSON
 // object with its own error messages (JsonSource below for "where: \"key\" must be a number";
 // rig_detail::Fields for the rig and plan files' "file: key: problem" with ranges).
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -64,13 +66,22 @@ template <class T>
 struct Field {
   using Member = std::variant<double T::*, std::optional<double> T::*, int T::*, std::uint32_t T::*,
                               std::size_t T::*, bool T::*, std::string T::*, Pose T::*,
-                              std::vector<double> T::*>;
+                              std::vector<double> T::*, float T::*, std::uint16_t T::*>;
   const char* key;
   Member member;
   double scale = 1.0;  ///< file value = SI value x scale
   Need need = Need::required;
   Range range{};
 };
+
+/// The shortest decimal of a protocol f32 as a double (0.01f is written 0.01, not 0.009999999776).
+inline double f32(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  double d = 0;
+  std::from_chars(buf, r.ptr, d);
+  return d;
+}
 
 /// A pose in the files' form: [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg].
 inline nlohmann::json pose_mm_deg(const Pose& p) {
@@ -91,6 +102,7 @@ void write_fields(Json& j, const T& v, std::span<const Field<T>> table) {
           using M = std::remove_cvref_t<decltype(v.*member)>;
           const M& x = v.*member;
           if constexpr (std::is_same_v<M, double>) j[f.key] = x * f.scale;
+          else if constexpr (std::is_same_v<M, float>) j[f.key] = f32(x) * f.scale;
           else if constexpr (std::is_same_v<M, std::optional<double>>) j[f.key] = x ? Json(*x * f.scale) : Json(nullptr);
           else if constexpr (std::is_same_v<M, Pose>) j[f.key] = pose_mm_deg(x);
           else if constexpr (std::is_same_v<M, std::vector<double>>) {
@@ -130,7 +142,10 @@ void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
           if constexpr (std::is_same_v<M, double> || std::is_same_v<M, std::optional<double>>)
             x = from_file(src.number(f.key, f.range), f.scale);
           else if constexpr (std::is_same_v<M, int>) x = static_cast<int>(src.integer(f.key, f.range));
-          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t>)
+          else if constexpr (std::is_same_v<M, float>)
+            x = static_cast<float>(from_file(src.number(f.key, f.range), f.scale));
+          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t> ||
+                             std::is_same_v<M, std::uint16_t>)
             x = static_cast<M>(src.integer(f.key, f.range));
           else if constexpr (std::is_same_v<M, bool>) x = src.boolean(f.key);
           else if constexpr (std::is_same_v<M, std::string>) x = src.text(f.key);

@@ -446,4 +446,65 @@ TEST(DeviceJson, AProtocolThatIsNotMajorDotMinorIsRefusedByName) {
   }
 }
 
+TEST(ProgramJson, ARampIsWrittenInLabUnitsAndReadsBackToTheSameMessage) {
+  palp::RampProgram m;
+  m.start_A = 0.5f;
+  m.stop_A = 3.0f;
+  m.step_A = 0.01f;
+  m.dwell_s = 0.1f;
+  m.repetitions = 5;
+  m.unload = 0;
+  m.displacement_limit_counts = 4500;
+  const json j = palp::program_json(m);
+  EXPECT_EQ(j, json::parse(R"({"start_A": 0.5, "stop_A": 3.0, "step_A": 0.01, "dwell_s": 0.1,
+                               "reps": 5, "unload": false, "displacement_limit_mm": 4.5})"));
+  palp::RampProgram r;
+  palp::read_program(j, "ramp", r);
+  EXPECT_EQ(r, m);
+}
+
+TEST(ProgramJson, SweepAndMultisineReadBackToTheSameMessages) {
+  palp::SweepProgram s;
+  s.offset_A = 1.25f;
+  s.amplitude_A = 0.05f;
+  s.start_Hz = 0.5f;
+  s.stop_Hz = 40.0f;
+  s.step_Hz = 0.25f;
+  s.settle_cycles = 7;
+  s.settle_min_s = 0.8f;
+  s.measure_cycles = 9;
+  palp::SweepProgram s2;
+  palp::read_program(palp::program_json(s), "sweep", s2);
+  EXPECT_EQ(s2, s);
+
+  palp::MultisineProgram m;
+  m.offset_A = 1.1f;
+  m.fundamental_Hz = 0.1f;
+  m.line_first = 5;
+  m.line_last = 201;
+  m.line_step = 4;
+  m.line_amplitude_A = 0.003f;
+  m.phase_mode = palp::proto::PhaseMode::schroeder;
+  m.phase_seed = 77;
+  m.periods = 6;
+  const json j = palp::program_json(m);
+  EXPECT_EQ(j["phase_mode"], "schroeder");
+  EXPECT_EQ(j["line_amplitude_A"], 0.003);  // the f32's shortest decimal
+  palp::MultisineProgram m2;
+  palp::read_program(j, "multisine", m2);
+  EXPECT_EQ(m2, m);
+}
+
+TEST(ProgramJson, AMistypedParameterIsAConfigErrorNamingIt) {
+  json j = palp::program_json(palp::SweepProgram{});
+  j["step_Hz"] = "fast";
+  palp::SweepProgram m;
+  try {
+    palp::read_program(j, "run.json: program.parameters", m);
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "run.json: program.parameters: \"step_Hz\" must be a number");
+  }
+}
+
 }  // namespace
