@@ -107,56 +107,6 @@ const Field<IP> kParamsFields[] = {
     {"tangent_depths_mm", &IP::tangent_depths_m, kMm, Need::optional},
 };
 
-/// result.json's checked access (a field table's Source): ConfigError "missing key
-/// \"parameters.key\"" or "\"parameters.key\" is not a number", which load_result's callers get
-/// as a RecordingError naming the file.
-struct ResultSource {
-  const json& j;
-  std::string where;  ///< "parameters.", "parameters.analysis."
-
-  bool has(const char* key) const { return j.is_object() && j.contains(key) && !j[key].is_null(); }
-  const json& at(const char* key) const {
-    if (!j.is_object() || !j.contains(key)) throw ConfigError("missing key \"" + where + key + "\"");
-    return j[key];
-  }
-  [[noreturn]] void fail(const char* key, const char* problem) const {
-    throw ConfigError("\"" + where + key + "\" is not " + problem);
-  }
-  double number(const char* key, const format::Range&) const {
-    const json& v = at(key);
-    if (!v.is_number()) fail(key, "a number");
-    return v.get<double>();
-  }
-  long long integer(const char* key, const format::Range& r) const {
-    return static_cast<long long>(number(key, r));
-  }
-  bool boolean(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_boolean()) fail(key, "true or false");
-    return v.get<bool>();
-  }
-  std::string text(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_string()) fail(key, "a string");
-    return v.get<std::string>();
-  }
-  std::vector<double> numbers(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_array()) fail(key, "an array of numbers");
-    std::vector<double> out;
-    for (const json& e : v) {
-      if (!e.is_number()) fail(key, "an array of numbers");
-      out.push_back(e.get<double>());
-    }
-    return out;
-  }
-  const json& object(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_object()) fail(key, "an object");
-    return v;
-  }
-};
-
 constexpr const char* kModelFree = "model-free: no fit standard error (see the _sd over repetitions)";
 
 }  // namespace
@@ -319,10 +269,12 @@ json indentation_settings_json(const IndentationSettings& s) {
 }
 
 IndentationSettings indentation_settings_from_json(const json& j, const std::string& where) {
-  const ResultSource src{j, where};
+  // result.json's messages: "missing key \"parameters.analysis.poisson\"", "\"parameters.reps\" is
+  // not a number"
+  const format::JsonSource src(j, where, format::Naming::dotted_path);
   IndentationSettings s;
   format::read_fields(src, s, kSettingsFields);
-  const ResultSource a{src.object("analysis"), where + "analysis."};
+  const format::JsonSource a(src.object("analysis"), where + "analysis.", format::Naming::dotted_path);
   analysis::IndentationParams& p = s.analysis;
   format::read_fields(a, p, kParamsFields);
   if (a.has("thickness_mm"))

@@ -170,18 +170,25 @@ void read_fields(const Source& src, T& v, const Field<T> (&table)[N]) {
   read_fields(src, v, std::span<const Field<T>>(table));
 }
 
-/// The trace and map files' Source: ConfigError "where: \"key\" must be a number" (an integer
-/// is any number, truncated, as those readers always took it); no ranges.
+/// How a JsonSource names a bad key.
+enum class Naming {
+  where_colon_key,  ///< "where: \"key\" must be a number"; an absent key reads as null
+  dotted_path,      ///< result.json's "\"parameters.key\" is not a number", "missing key \"parameters.key\""
+};
+
+/// A JSON object's Source: ConfigError naming the key (Naming); an integer is any number,
+/// truncated, as the trace and map readers always took it; no ranges.
 class JsonSource {
  public:
-  JsonSource(const nlohmann::json& j, std::string where) : j_(j), where_(std::move(where)) {}
+  JsonSource(const nlohmann::json& j, std::string where, Naming naming = Naming::where_colon_key)
+      : j_(j), where_(std::move(where)), naming_(naming) {}
   bool has(const char* key) const {
     const auto it = j_.find(key);
     return it != j_.end() && !it->is_null();
   }
   double number(const char* key, const Range&) const {
     const auto& v = at(key);
-    if (!v.is_number()) fail(key, "must be a number");
+    if (!v.is_number()) wrong(key, "a number");
     return v.get<double>();
   }
   long long integer(const char* key, const Range& r) const {
@@ -189,13 +196,28 @@ class JsonSource {
   }
   bool boolean(const char* key) const {
     const auto& v = at(key);
-    if (!v.is_boolean()) fail(key, "must be true or false");
+    if (!v.is_boolean()) wrong(key, "true or false");
     return v.get<bool>();
   }
   std::string text(const char* key) const {
     const auto& v = at(key);
-    if (!v.is_string()) fail(key, "must be a string");
+    if (!v.is_string()) wrong(key, "a string");
     return v.get<std::string>();
+  }
+  std::vector<double> numbers(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_array()) wrong(key, "an array of numbers");
+    std::vector<double> out;
+    for (const auto& e : v) {
+      if (!e.is_number()) wrong(key, "an array of numbers");
+      out.push_back(e.get<double>());
+    }
+    return out;
+  }
+  const nlohmann::json& object(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_object()) wrong(key, "an object");
+    return v;
   }
   Pose pose(const char* key) const {
     const auto& v = at(key);
@@ -209,19 +231,27 @@ class JsonSource {
     }
     return pose_of_mm_deg(x);
   }
+  /// ConfigError naming the key with `problem` ("must be ...") after it.
   [[noreturn]] void fail(const char* key, const std::string& problem) const {
+    if (naming_ == Naming::dotted_path) throw ConfigError("\"" + where_ + key + "\" " + problem);
     throw ConfigError(where_ + ": \"" + key + "\" " + problem);
   }
 
  private:
-  /// The value, or null when the key is absent.
+  [[noreturn]] void wrong(const char* key, const char* kind) const {
+    fail(key, std::string(naming_ == Naming::dotted_path ? "is not " : "must be ") + kind);
+  }
+  /// The value; when the key is absent null (where_colon_key) or ConfigError (dotted_path).
   const nlohmann::json& at(const char* key) const {
     static const nlohmann::json null;
     const auto it = j_.find(key);
-    return it == j_.end() ? null : *it;
+    if (it != j_.end()) return *it;
+    if (naming_ == Naming::dotted_path) throw ConfigError("missing key \"" + where_ + key + "\"");
+    return null;
   }
   const nlohmann::json& j_;
   std::string where_;
+  Naming naming_;
 };
 
 }  // namespace palp::format
