@@ -33,28 +33,6 @@ palp::RecordingRow row_of(const palp::Sample& s, int rep) {
           .rep = rep};
 }
 
-/// What the device and the SDK know before the first sample, for the sidecar.
-palp::Sidecar describe_setup(palp::Probe& probe, const palp::StreamInfo& stream) {
-  palp::Sidecar side;
-  side.device = to_json(probe.info());
-  side.device["uri"] = probe.uri();
-  side.device["params"] = to_json(probe.params());
-  const auto cal = probe.calibration();
-  side.calibration = palp::calibration_json(cal);
-  if (cal.stroke_origin_valid != 0) {
-    side.stroke_origin_z_mm = mm_from_counts(cal.stroke_origin_counts);
-  } else {
-    side.stroke_origin_z_mm_reason =
-        "the device's stroke origin is not homed (palpctl calibrate home)";
-  }
-  for (const auto& z : probe.zeroing()) side.zeroing.push_back(palp::zeroing_json(z));
-  side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
-                          {"period_s", stream.period_s},
-                          {"channels", stream.channels},
-                          {"batch_samples", stream.batch_samples}};
-  return side;
-}
-
 }  // namespace
 
 void add_acquire_options(CLI::App& cmd, AcquireOptions& o) {
@@ -95,7 +73,8 @@ int acquire(const Context& ctx, const AcquireOptions& o,
   if (o.zero_current) probe.zero_current_offset(o.zero_s);
   if (o.zero_pressure) probe.zero_pressure(o.zero_s);
   const auto stream = probe.configure_stream({.rate_Hz = o.rate_Hz});
-  palp::Sidecar side = describe_setup(probe, stream);
+  palp::Sidecar side = palp::setup_sidecar(probe);
+  side.device["params"] = to_json(probe.params());
   if (program) {
     side.program = {{"kind", program->name}, {"parameters", program->params}};
   } else {

@@ -11,7 +11,7 @@ int info(const Context& ctx) {
   auto probe = ctx.connect();
   json j = {{"uri", probe.uri()},
             {"sdk_version", palp::sdk_version()},
-            {"device", to_json(probe.info())},
+            {"device", palp::device_json(probe.info())},
             {"handshake", to_json(probe.handshake())},
             {"status", to_json(probe.status())},
             {"params", to_json(probe.params())},

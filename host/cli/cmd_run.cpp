@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "acquire.hpp"
+#include "palp/result.hpp"
 
 namespace palpctl {
 
@@ -56,7 +57,7 @@ void add_run_command(CLI::App& app, Context& ctx) {
     h.duration_s = static_cast<float>(r.acq.seconds);
     ProgramSpec spec;
     spec.name = "hold";
-    spec.params = {{"current_A", f32(h.current_A)}, {"seconds", r.acq.seconds}};
+    spec.params = palp::program_json(h);
     spec.expected_s = r.acq.seconds;  // the program ends itself
     spec.load = [h](palp::Probe& p) { p.load(h); };
     return spec;
@@ -77,13 +78,9 @@ void add_run_command(CLI::App& app, Context& ctx) {
         static_cast<std::uint32_t>(counts_from_mm(r.displacement_limit_mm));
     const double levels = grid_points(m.start_A, m.stop_A, m.step_A);
     const double stairs = m.unload ? 2 * levels - 1 : levels;
-    json params = {{"start_A", f32(m.start_A)},     {"stop_A", f32(m.stop_A)},
-                   {"step_A", f32(m.step_A)},       {"dwell_s", f32(m.dwell_s)},
-                   {"reps", m.repetitions},    {"unload", m.unload != 0},
-                   {"displacement_limit_mm", r.displacement_limit_mm}};
     ProgramSpec spec;
     spec.name = "ramp";
-    spec.params = params;
+    spec.params = palp::program_json(m);
     spec.expected_s = stairs * m.dwell_s * m.repetitions;
     spec.stop_after_s = r.acq.seconds;
     spec.load = [m](palp::Probe& p) { p.load(m); };
@@ -109,14 +106,10 @@ void add_run_command(CLI::App& app, Context& ctx) {
   auto* sine = add_program(*run, ctx, o, "sine", "Sine about an offset current",
                            [](const RunOptions& r) {
     const auto& m = r.sine;
-    json params = {{"offset_A", f32(m.offset_A)},
-                   {"amplitude_A", f32(m.amplitude_A)},
-                   {"frequency_Hz", f32(m.frequency_Hz)},
-                   {"cycles", m.cycles}};
     const double t = m.cycles > 0 ? m.cycles / static_cast<double>(m.frequency_Hz) : 0.0;
     ProgramSpec spec;
     spec.name = "sine";
-    spec.params = params;
+    spec.params = palp::program_json(m);
     spec.expected_s = t;
     spec.stop_after_s = r.acq.seconds;
     spec.load = [m](palp::Probe& p) { p.load(m); };
@@ -138,10 +131,6 @@ void add_run_command(CLI::App& app, Context& ctx) {
                             "Stepped-sine sweep from --start-Hz to --stop-Hz by --step-Hz",
                             [](const RunOptions& r) {
     const auto& m = r.sweep;
-    json params = {{"offset_A", f32(m.offset_A)},       {"amplitude_A", f32(m.amplitude_A)},
-                   {"start_Hz", f32(m.start_Hz)},       {"stop_Hz", f32(m.stop_Hz)},
-                   {"step_Hz", f32(m.step_Hz)},         {"settle_cycles", m.settle_cycles},
-                   {"settle_min_s", f32(m.settle_min_s)}, {"measure_cycles", m.measure_cycles}};
     double t = 0;
     const double lines = grid_points(m.start_Hz, m.stop_Hz, m.step_Hz);
     const double dir = m.stop_Hz >= m.start_Hz ? 1.0 : -1.0;
@@ -152,7 +141,7 @@ void add_run_command(CLI::App& app, Context& ctx) {
     }
     ProgramSpec spec;
     spec.name = "sweep";
-    spec.params = params;
+    spec.params = palp::program_json(m);
     spec.expected_s = t;
     spec.stop_after_s = r.acq.seconds;
     spec.load = [m](palp::Probe& p) { p.load(m); };

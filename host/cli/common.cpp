@@ -107,23 +107,6 @@ double f32(float v) {
 
 std::int32_t counts_from_mm(double mm) { return static_cast<std::int32_t>(std::lround(mm * 1e3)); }
 
-json to_json(const palp::DeviceInfo& d) {
-  return {{"serial", d.serial},
-          {"board", d.board},
-          {"firmware_version", d.firmware_version},
-          {"git_hash", d.git_hash},
-          {"protocol_version", std::to_string(d.protocol_major) + "." +
-                                   std::to_string(d.protocol_minor)},
-          {"schema_hash", d.schema_hash},
-          {"simulated", d.has(palp::proto::Capability::simulated)},
-          {"pressure_channels", d.has(palp::proto::Capability::pressure) ? 6 : 0},
-          {"max_current_A", d.max_current_A},
-          {"control_rate_Hz", d.control_rate_Hz},
-          {"max_stream_rate_Hz", d.max_stream_rate_Hz},
-          {"heartbeat_timeout_s", d.heartbeat_timeout_s},
-          {"max_payload_bytes", d.max_payload}};
-}
-
 json to_json(const palp::Handshake& h) {
   return {{"verdict", h.missing_features ? "compatible_missing_features" : "compatible"},
           {"missing", h.missing},

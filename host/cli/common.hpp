@@ -100,7 +100,6 @@ std::string name_of(E value) {
 }
 
 // --- the SDK's structs in lab units, as JSON (keys carry their units) ----------------------
-json to_json(const palp::DeviceInfo& d);
 json to_json(const palp::Handshake& h);
 json to_json(const palp::Params& p);
 json to_json(const palp::HealthCounters& h);

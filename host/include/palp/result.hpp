@@ -91,11 +91,47 @@ nlohmann::json pressure_summary_json(const analysis::PressureResult& result);
 /// poisson, bias_current_A, bias_force_N, thickness_mm (null when none) and bonding, window_lo_mm,
 /// window_hi_mm, local_half_width_mm, tangent_depths_mm, min_points.
 nlohmann::json indentation_params_json(const analysis::IndentationParams& p);
-/// The experiment's settings (ramp in A and s, limit in mm, rates in Hz) and its analysis params.
+/// The experiment's settings (ramp in A and s, limit in mm, rates in Hz) and its analysis params,
+/// result.json's "parameters".
 nlohmann::json indentation_settings_json(const IndentationSettings& s);
-/// Device and firmware info, calibration (lab units) and a zeroing record, as in the sidecar.
+/// indentation_settings_json read back (keys it does not know are ignored; unload, zero_pressure,
+/// zero_pressure_s, settle_s, min_points, tangent_depths_mm and force_noise_N keep their defaults
+/// when absent). ConfigError "missing key \"<where>start_A\"", "\"<where>analysis.poisson\" is not
+/// a number", ...
+IndentationSettings indentation_settings_from_json(const nlohmann::json& j, const std::string& where = "");
+/// The device block of the sidecar and result.json (and `palpctl info`): serial, board,
+/// firmware_version, git_hash, protocol ("major.minor"), schema_hash, capabilities (the
+/// proto::Capability bits), max_current_A, control_rate_Hz, max_stream_rate_Hz,
+/// heartbeat_timeout_s, max_payload_bytes.
 nlohmann::json device_json(const DeviceInfo& d);
+/// A device block read back (other keys, such as the sidecar's "uri", are ignored). Every key may
+/// be absent; a block palpctl wrote before issue 16 ("protocol_version", and "simulated" and
+/// "pressure_channels" instead of "capabilities") reads too. ConfigError "where: \"key\" ..."
+/// for a key of the wrong type.
+DeviceInfo device_info_from_json(const nlohmann::json& j, const std::string& where);
+/// The calibration (lab units) and a zeroing record, as in the sidecar.
 nlohmann::json calibration_json(const Calibration& c);
 nlohmann::json zeroing_json(const ZeroingRecord& z);
+/// A device program's parameters as the sidecar's program.parameters holds them, in lab units
+/// (each f32 as its shortest decimal): hold current_A, seconds; ramp start_A, stop_A, step_A,
+/// dwell_s, reps, unload, displacement_limit_mm; sine offset_A, amplitude_A, frequency_Hz,
+/// cycles; sweep and multisine the message's own field names (phase_mode by its name).
+nlohmann::json program_json(const HoldProgram& m);
+nlohmann::json program_json(const RampProgram& m);
+nlohmann::json program_json(const SineProgram& m);
+nlohmann::json program_json(const SweepProgram& m);
+nlohmann::json program_json(const MultisineProgram& m);
+/// program_json read back into `m` (the same keys; others are ignored). ConfigError
+/// "where: \"key\" must be a number", ... for a missing or mistyped key.
+void read_program(const nlohmann::json& parameters, const std::string& where, HoldProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, RampProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, SineProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, SweepProgram& m);
+void read_program(const nlohmann::json& parameters, const std::string& where, MultisineProgram& m);
+/// What the device and the SDK know before the first sample, for a recording's sidecar: the SDK
+/// version, device (device_json with "uri"), calibration, stroke_origin_z_mm (or its reason),
+/// zeroing and, in extra, "stream" (rate_Hz, period_s, channels, batch_samples of the configured
+/// stream). The experiments and palpctl's recordings start from it.
+Sidecar setup_sidecar(Probe& probe);
 
 }  // namespace palp

@@ -35,14 +35,6 @@ RecordingRow row_of(const Sample& s) {
 
 }  // namespace
 
-double f32(float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  double d = 0;
-  std::from_chars(buf, r.ptr, d);
-  return d;
-}
-
 void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled) {
   while (probe.status().t_device_s < until_s) {
     if (cancelled && cancelled()) return;
@@ -149,28 +141,12 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
   return out;
 }
 
-Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
-                     const ProgramRecording& r) {
-  Sidecar side;
-  side.device = device_json(device);
-  side.device["uri"] = probe.uri();
-  const Calibration cal = probe.calibration();
-  side.calibration = calibration_json(cal);
-  if (cal.stroke_origin_valid != 0) {
-    side.stroke_origin_z_mm = cal.stroke_origin_counts * 1e-3;
-  } else {
-    side.stroke_origin_z_mm_reason = "the device's stroke origin is not homed (palpctl calibrate home)";
-  }
-  for (const auto& z : probe.zeroing()) side.zeroing.push_back(zeroing_json(z));
-  const StreamInfo& stream = probe.stream_info();
+Sidecar base_sidecar(Probe& probe, const std::string& experiment, const ProgramRecording& r) {
+  Sidecar side = setup_sidecar(probe);
   side.extra["experiment"] = experiment;
-  side.extra["stream"] = {{"rate_Hz", stream.rate_Hz},
-                          {"period_s", stream.period_s},
-                          {"channels", stream.channels}};
   side.extra["gaps"] = r.gaps;
   side.extra["samples_missing"] = r.samples_missing;
   side.extra["interrupted"] = r.interrupted;
-  side.sdk_version = sdk_version();
   return side;
 }
 

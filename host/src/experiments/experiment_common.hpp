@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "format/field_table.hpp"
 #include "palp/probe.hpp"
 #include "palp/recording.hpp"
 
@@ -18,8 +19,7 @@ inline constexpr double kCountM = 1e-6;            ///< one encoder count, m (SP
 inline constexpr double kMaxStreamRate_Hz = 1000;  ///< the experiments stream at <= 1 kHz
 inline constexpr std::uint32_t kFloatCounts = 500; ///< the coil has left its rear stop (0.5 mm)
 
-/// The shortest decimal of a protocol f32 as a double (0.01f reads 0.01).
-double f32(float v);
+using format::f32;  ///< the shortest decimal of a protocol f32 as a double (0.01f reads 0.01)
 
 /// Waits until the device clock reaches until_s (or cancelled()).
 void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled);
@@ -53,10 +53,12 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
                                 const std::function<void(double, const Sample&)>& progress,
                                 const std::function<bool()>& cancelled);
 
-/// The sidecar's common part: device (with uri), calibration, stroke origin (or why not),
-/// zeroing, sdk version, and in extra "experiment", "stream", "gaps", "samples_missing",
-/// "interrupted".
-Sidecar base_sidecar(Probe& probe, const DeviceInfo& device, const std::string& experiment,
-                     const ProgramRecording& r);
+/// A PhaseMode by its catalogue name; ConfigError "where: unknown phase_mode ..." else.
+proto::PhaseMode phase_mode_named(const std::string& name, const std::string& where);
+
+/// The sidecar's common part: setup_sidecar (result.hpp: device with uri, calibration, stroke
+/// origin or why not, zeroing, sdk version, "stream") and in extra "experiment", "gaps",
+/// "samples_missing", "interrupted".
+Sidecar base_sidecar(Probe& probe, const std::string& experiment, const ProgramRecording& r);
 
 }  // namespace palp::experiment

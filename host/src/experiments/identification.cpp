@@ -8,12 +8,12 @@
 #include "format/field_table.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
+#include "palp/result.hpp"
 
 namespace palp {
 
 namespace {
 
-using experiment::f32;
 
 constexpr double kSameCurrent_A = 1e-3;      // a bias this close to I_c needs no second hold
 
@@ -41,33 +41,6 @@ void float_and_hold_bias(Probe& probe, const IdentificationSettings& s,
   }
   phase("settling");
   experiment::wait_device_time(probe, event->t_device_s + s.settle_s, cancelled);
-}
-
-nlohmann::json sweep_json(const proto::LoadSweep& m) {
-  return {{"offset_A", f32(m.offset_A)},         {"amplitude_A", f32(m.amplitude_A)},
-          {"start_Hz", f32(m.start_Hz)},         {"stop_Hz", f32(m.stop_Hz)},
-          {"step_Hz", f32(m.step_Hz)},           {"settle_cycles", m.settle_cycles},
-          {"settle_min_s", f32(m.settle_min_s)}, {"measure_cycles", m.measure_cycles}};
-}
-
-nlohmann::json multisine_json(const proto::LoadMultisine& m) {
-  const char* mode = proto::enum_name(m.phase_mode);
-  return {{"offset_A", f32(m.offset_A)},
-          {"fundamental_Hz", f32(m.fundamental_Hz)},
-          {"line_first", m.line_first},
-          {"line_last", m.line_last},
-          {"line_step", m.line_step},
-          {"line_amplitude_A", f32(m.line_amplitude_A)},
-          {"phase_mode", mode ? mode : "?"},
-          {"phase_seed", m.phase_seed},
-          {"periods", m.periods}};
-}
-
-proto::PhaseMode phase_mode_named(const std::string& name, const std::string& where) {
-  for (const auto& v : proto::EnumInfo<proto::PhaseMode>::values)
-    if (name == v.name) return static_cast<proto::PhaseMode>(v.value);
-  throw ConfigError(where + ": unknown phase_mode \"" + name +
-                    "\" (random_seeded, schroeder or zero)");
 }
 
 // Reading the sidecar's objects: every missing or mistyped key is a ConfigError naming it.
@@ -174,7 +147,7 @@ IdentificationSettings identification_settings_from_json(const nlohmann::json& j
                       "\" is neither stepped nor multisine");
   s.method = method == "stepped" ? SweepMethod::stepped : SweepMethod::multisine;
   format::read_fields(r, s, kSettingsFields);
-  s.phase_mode = phase_mode_named(r.str("phase_mode"), r.where);
+  s.phase_mode = experiment::phase_mode_named(r.str("phase_mode"), r.where);
   format::read_fields(r, s.frf, kFrfFields);
   const auto& table = r.at("kf_table");
   if (!table.is_array()) throw ConfigError("the identification settings: \"kf_table\" is not an array");
@@ -254,9 +227,9 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
   run.samples_missing = rec.samples_missing;
   run.recording = std::move(rec.recording);
 
-  Sidecar side = experiment::base_sidecar(probe, run.device, "identification", rec);
+  Sidecar side = experiment::base_sidecar(probe, "identification", rec);
   side.program = {{"kind", stepped ? "sweep" : "multisine"},
-                  {"parameters", stepped ? sweep_json(run.sweep) : multisine_json(run.multisine)},
+                  {"parameters", stepped ? program_json(run.sweep) : program_json(run.multisine)},
                   {"result",
                    {{"end", proto::enum_name(run.program.end) ? proto::enum_name(run.program.end) : "?"},
                     {"t_device_s", run.program.t_device_s},
@@ -310,33 +283,16 @@ IdentificationRun identification_run_of(const Recording& recording) {
   run.control_rate_Hz = extra.integer<std::uint32_t>("control_rate_Hz");
   const Reader program{side.program, "the recording's sidecar program"};
   const std::string kind = program.str("kind");
-  const Reader p{program.at("parameters"), "the recording's sidecar program parameters"};
   const bool stepped = run.settings.method == SweepMethod::stepped;
   if (kind != (stepped ? "sweep" : "multisine"))
     throw ConfigError("the recording's sidecar program is a \"" + kind + "\", the settings' method " +
                       sweep_method_name(run.settings.method) + " needs a " +
                       (stepped ? "sweep" : "multisine"));
+  const std::string where = "the recording's sidecar program parameters";
   if (stepped) {
-    proto::LoadSweep& m = run.sweep;
-    m.offset_A = static_cast<float>(p.num("offset_A"));
-    m.amplitude_A = static_cast<float>(p.num("amplitude_A"));
-    m.start_Hz = static_cast<float>(p.num("start_Hz"));
-    m.stop_Hz = static_cast<float>(p.num("stop_Hz"));
-    m.step_Hz = static_cast<float>(p.num("step_Hz"));
-    m.settle_cycles = p.integer<std::uint16_t>("settle_cycles");
-    m.settle_min_s = static_cast<float>(p.num("settle_min_s"));
-    m.measure_cycles = p.integer<std::uint16_t>("measure_cycles");
+    read_program(program.at("parameters"), where, run.sweep);
   } else {
-    proto::LoadMultisine& m = run.multisine;
-    m.offset_A = static_cast<float>(p.num("offset_A"));
-    m.fundamental_Hz = static_cast<float>(p.num("fundamental_Hz"));
-    m.line_first = p.integer<std::uint16_t>("line_first");
-    m.line_last = p.integer<std::uint16_t>("line_last");
-    m.line_step = p.integer<std::uint16_t>("line_step");
-    m.line_amplitude_A = static_cast<float>(p.num("line_amplitude_A"));
-    m.phase_mode = phase_mode_named(p.str("phase_mode"), p.where);
-    m.phase_seed = p.integer<std::uint32_t>("phase_seed");
-    m.periods = p.integer<std::uint16_t>("periods");
+    read_program(program.at("parameters"), where, run.multisine);
   }
   if (side.program.contains("result") && side.program["result"].is_object()) {
     const auto& res = side.program["result"];

@@ -8,6 +8,7 @@
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 #include "palp/protocol/program_schedule.hpp"
+#include "palp/result.hpp"
 
 namespace palp {
 
@@ -92,7 +93,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
                         : analysis::fit_kf_table(run.points, settings.k_v_N_per_m, nodes);
 
   // the sidecar keeps the calibration in force while the staircase ran
-  Sidecar side = experiment::base_sidecar(probe, device, "kf_calibration", rec);
+  Sidecar side = experiment::base_sidecar(probe, "kf_calibration", rec);
   if (settings.write) {
     Calibration cal = probe.calibration();
     cal.kf_position_counts = {};
@@ -111,14 +112,7 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
   }
 
   side.program = {{"kind", "ramp"},
-                  {"parameters",
-                   {{"start_A", experiment::f32(ramp.start_A)},
-                    {"stop_A", experiment::f32(ramp.stop_A)},
-                    {"step_A", experiment::f32(ramp.step_A)},
-                    {"dwell_s", experiment::f32(ramp.dwell_s)},
-                    {"reps", ramp.repetitions},
-                    {"unload", true},
-                    {"displacement_limit_mm", 0.0}}},
+                  {"parameters", program_json(ramp)},
                   {"result",
                    {{"end", proto::enum_name(rec.program.end) ? proto::enum_name(rec.program.end) : "?"},
                     {"t_device_s", rec.program.t_device_s},

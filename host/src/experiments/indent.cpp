@@ -13,7 +13,6 @@ namespace palp {
 
 namespace {
 
-using experiment::f32;
 using experiment::wait_device_time;
 
 using experiment::kCountM;
@@ -25,17 +24,6 @@ double float_coil(Probe& probe, const IndentationSettings& s, const std::functio
       probe, s.start_A, "is the tip pressed against the specimen, or start_A below the float current?");
   wait_device_time(probe, event.t_device_s + s.settle_s, cancelled);
   return probe.status().encoder_counts * kCountM;
-}
-
-nlohmann::json ramp_json(const IndentationSettings& s) {
-  const RampProgram m = s.ramp_program();
-  return {{"start_A", f32(m.start_A)},
-          {"stop_A", f32(m.stop_A)},
-          {"step_A", f32(m.step_A)},
-          {"dwell_s", f32(m.dwell_s)},
-          {"reps", m.repetitions},
-          {"unload", m.unload != 0},
-          {"displacement_limit_mm", s.displacement_limit_m * 1e3}};
 }
 
 }  // namespace
@@ -91,9 +79,9 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
     rec.rep = split_repetitions_at_current_minima(*rec.i_cmd_A);
   }
 
-  Sidecar side = experiment::base_sidecar(probe, run.device, "indentation", recorded);
+  Sidecar side = experiment::base_sidecar(probe, "indentation", recorded);
   side.program = {{"kind", "ramp"},
-                  {"parameters", ramp_json(settings)},
+                  {"parameters", program_json(settings.ramp_program())},
                   {"result",
                    {{"end", proto::enum_name(run.program.end) ? proto::enum_name(run.program.end) : "?"},
                     {"t_device_s", run.program.t_device_s},

@@ -36,13 +36,6 @@ const json& need(const json& j, const std::string& key, const std::string& file,
   return j.at(key);
 }
 
-double number(const json& j, const std::string& key, const std::string& file,
-              const std::string& where) {
-  const json& v = need(j, key, file, where);
-  if (!v.is_number()) throw RecordingError(file, 0, "\"" + where + key + "\" is not a number");
-  return v.get<double>();
-}
-
 }  // namespace
 
 fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwrite overwrite) {
@@ -123,44 +116,23 @@ IndentationRun indentation_run_of(const LoadedResult& result) {
     throw RecordingError(name, 0, "experiment is \"" + result.experiment + "\", not an indentation");
   if (result.recordings.empty()) throw RecordingError(name, 0, "lists no recording");
   IndentationRun run;
-  const json& p = need(result.summary, "parameters", name);
-  const std::string w = "parameters.";
-  IndentationSettings& s = run.settings;
-  s.start_A = number(p, "start_A", name, w);
-  s.stop_A = number(p, "stop_A", name, w);
-  s.step_A = number(p, "step_A", name, w);
-  s.dwell_s = number(p, "dwell_s", name, w);
-  s.repetitions = static_cast<int>(number(p, "reps", name, w));
-  s.displacement_limit_m = number(p, "displacement_limit_mm", name, w) * 1e-3;
-  s.stream_rate_Hz = number(p, "rate_Hz", name, w);
-  const json& a = need(p, "analysis", name, w);
-  const std::string wa = w + "analysis.";
-  auto& ap = s.analysis;
-  ap.force_constant_N_per_A = number(a, "kf_N_per_A", name, wa);
-  ap.contact_current_A = number(a, "ic_A", name, wa);
-  ap.spring_N_per_m = number(a, "kv_N_per_mm", name, wa) * 1e3;
-  ap.tip_radius_m = number(a, "tip_radius_mm", name, wa) * 1e-3;
-  ap.poisson = number(a, "poisson", name, wa);
-  ap.bias_current_A = number(a, "bias_current_A", name, wa);
-  ap.window_lo_m = number(a, "window_lo_mm", name, wa) * 1e-3;
-  ap.window_hi_m = number(a, "window_hi_mm", name, wa) * 1e-3;
-  ap.local_half_width_m = number(a, "local_half_width_mm", name, wa) * 1e-3;
-  if (a.contains("thickness_mm") && a["thickness_mm"].is_number())
-    ap.thickness = analysis::Thickness{a["thickness_mm"].get<double>() * 1e-3,
-                                       a.value("bonding", "bonded") == "unbonded"
-                                           ? analysis::Bonding::unbonded
-                                           : analysis::Bonding::bonded};
+  try {
+    run.settings = indentation_settings_from_json(need(result.summary, "parameters", name), "parameters.");
+  } catch (const ConfigError& e) {
+    throw RecordingError(name, 0, e.what());
+  }
   run.recording = result.recordings.front().second;
   if (const json& run_j = need(result.summary, "run", name); run_j.is_object()) {
     run.interrupted = run_j.value("interrupted", false);
     run.samples_missing = run_j.value("samples_missing", std::uint64_t{0});
     run.float_z_m = run_j.value("float_z_mm", 0.0) * 1e-3;
   }
-  const json& d = need(result.summary, "device", name);
-  if (d.is_object()) {
-    run.device.serial = d.value("serial", "");
-    run.device.board = d.value("board", "");
-    run.device.firmware_version = d.value("firmware_version", "");
+  if (const json& d = need(result.summary, "device", name); d.is_object()) {
+    try {
+      run.device = device_info_from_json(d, "\"device\"");
+    } catch (const ConfigError& e) {
+      throw RecordingError(name, 0, e.what());
+    }
   }
   analyze_run(run);
   return run;

@@ -1,5 +1,5 @@
 // The lab-unit JSON of result.hpp: the analysed numbers with the issue's keys, the parameters,
-// device, calibration and zeroing.
+// the experiment's settings.
 #include <algorithm>
 #include <charconv>
 #include <iterator>
@@ -21,14 +21,6 @@ using analysis::Value;
 
 using format::kMm;
 using format::kNPerMm;
-
-using experiment::f32;
-
-json f32s(const float* v, std::size_t n) {
-  json a = json::array();
-  for (std::size_t k = 0; k < n; ++k) a.push_back(f32(v[k]));
-  return a;
-}
 
 /// key = value * scale, or null with key_reason.
 void put(json& j, const std::string& key, const Value& v, double scale) {
@@ -80,25 +72,49 @@ void put_sd(json& j, const std::string& key, const Value& sd, double scale) {
   put(j, key + "_sd", sd.value || !sd.reason.empty() ? sd : Value::absent("no repetitions"), scale);
 }
 
+using format::Field;
+using format::Need;
+
+// result.json's "parameters" (IndentationSettings) and "parameters.analysis" (IndentationParams,
+// also palpctl's "params"); bias_force_N (derived), thickness_mm with bonding and force_noise_N
+// (written only when given) by hand. The keys the first result.json reader did not read are
+// optional.
+const Field<IndentationSettings> kSettingsFields[] = {
+    {"start_A", &IndentationSettings::start_A},
+    {"stop_A", &IndentationSettings::stop_A},
+    {"step_A", &IndentationSettings::step_A},
+    {"dwell_s", &IndentationSettings::dwell_s},
+    {"reps", &IndentationSettings::repetitions},
+    {"unload", &IndentationSettings::unload, 1.0, Need::optional},
+    {"displacement_limit_mm", &IndentationSettings::displacement_limit_m, kMm},
+    {"rate_Hz", &IndentationSettings::stream_rate_Hz},
+    {"zero_pressure", &IndentationSettings::zero_pressure, 1.0, Need::optional},
+    {"zero_pressure_s", &IndentationSettings::zero_pressure_s, 1.0, Need::optional},
+    {"settle_s", &IndentationSettings::settle_s, 1.0, Need::optional},
+};
+using IP = analysis::IndentationParams;
+const Field<IP> kParamsFields[] = {
+    {"kf_N_per_A", &IP::force_constant_N_per_A},
+    {"ic_A", &IP::contact_current_A},
+    {"kv_N_per_mm", &IP::spring_N_per_m, kNPerMm},
+    {"tip_radius_mm", &IP::tip_radius_m, kMm},
+    {"poisson", &IP::poisson},
+    {"bias_current_A", &IP::bias_current_A},
+    {"window_lo_mm", &IP::window_lo_m, kMm},
+    {"window_hi_mm", &IP::window_hi_m, kMm},
+    {"local_half_width_mm", &IP::local_half_width_m, kMm},
+    {"min_points", &IP::min_points, 1.0, Need::optional},
+    {"tangent_depths_mm", &IP::tangent_depths_m, kMm, Need::optional},
+};
+
 constexpr const char* kModelFree = "model-free: no fit standard error (see the _sd over repetitions)";
 
 }  // namespace
 
 json indentation_params_json(const analysis::IndentationParams& p) {
-  json j = {{"kf_N_per_A", p.force_constant_N_per_A},
-            {"ic_A", p.contact_current_A},
-            {"kv_N_per_mm", p.spring_N_per_m * kNPerMm},
-            {"tip_radius_mm", p.tip_radius_m * kMm},
-            {"poisson", p.poisson},
-            {"bias_current_A", p.bias_current_A},
-            {"bias_force_N", p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A)},
-            {"window_lo_mm", p.window_lo_m * kMm},
-            {"window_hi_mm", p.window_hi_m * kMm},
-            {"local_half_width_mm", p.local_half_width_m * kMm},
-            {"min_points", p.min_points}};
-  json depths = json::array();
-  for (double d : p.tangent_depths_m) depths.push_back(d * kMm);
-  j["tangent_depths_mm"] = depths;
+  json j;
+  format::write_fields(j, p, kParamsFields);
+  j["bias_force_N"] = p.force_constant_N_per_A * (p.bias_current_A - p.contact_current_A);
   if (p.thickness) {
     j["thickness_mm"] = p.thickness->thickness_m * kMm;
     j["bonding"] = p.thickness->bonding == analysis::Bonding::unbonded ? "unbonded" : "bonded";
@@ -246,66 +262,28 @@ json pressure_summary_json(const analysis::PressureResult& pr) {
 }
 
 json indentation_settings_json(const IndentationSettings& s) {
-  return {{"start_A", s.start_A},
-          {"stop_A", s.stop_A},
-          {"step_A", s.step_A},
-          {"dwell_s", s.dwell_s},
-          {"reps", s.repetitions},
-          {"unload", s.unload},
-          {"displacement_limit_mm", s.displacement_limit_m * kMm},
-          {"rate_Hz", s.stream_rate_Hz},
-          {"zero_pressure", s.zero_pressure},
-          {"zero_pressure_s", s.zero_pressure_s},
-          {"settle_s", s.settle_s},
-          {"analysis", indentation_params_json(s.analysis)}};
-}
-
-json device_json(const DeviceInfo& d) {
-  return {{"serial", d.serial},
-          {"board", d.board},
-          {"firmware_version", d.firmware_version},
-          {"git_hash", d.git_hash},
-          {"protocol", std::to_string(d.protocol_major) + "." + std::to_string(d.protocol_minor)},
-          {"schema_hash", d.schema_hash},
-          {"capabilities", d.capabilities},
-          {"max_current_A", d.max_current_A},
-          {"control_rate_Hz", d.control_rate_Hz},
-          {"max_stream_rate_Hz", d.max_stream_rate_Hz},
-          {"heartbeat_timeout_s", d.heartbeat_timeout_s}};
-}
-
-json calibration_json(const Calibration& c) {
-  json table = json::array();
-  for (std::size_t k = 0; k < c.kf_position_counts.size && k < c.kf_N_per_A.size; ++k)
-    table.push_back({{"position_mm", c.kf_position_counts.items[k] * 1e-3},
-                     {"kf_N_per_A", f32(c.kf_N_per_A.items[k])}});
-  json j = {{"layout_version", c.layout_version},
-            {"kf_table", table},
-            {"current_offset_A", f32(c.current_offset_A)},
-            {"current_gain", f32(c.current_gain)},
-            {"pressure_offset_Pa", f32s(c.pressure_offset_Pa.data(), c.pressure_offset_Pa.size())},
-            {"pressure_gain", f32s(c.pressure_gain.data(), c.pressure_gain.size())},
-            {"spring_k_N_per_mm", f32(c.spring_k_N_per_m) * kNPerMm},
-            {"stroke_origin_valid", c.stroke_origin_valid != 0}};
-  if (c.stroke_origin_valid != 0) {
-    j["stroke_origin_mm"] = c.stroke_origin_counts * 1e-3;
-  } else {
-    j["stroke_origin_mm"] = nullptr;
-    j["stroke_origin_mm_reason"] = "not homed (palpctl calibrate home)";
-  }
+  json j;
+  format::write_fields(j, s, kSettingsFields);
+  j["analysis"] = indentation_params_json(s.analysis);
   return j;
 }
 
-json zeroing_json(const ZeroingRecord& z) {
-  // the recording sidecar's form (recording.hpp): offsets are the calibration block's f32 values,
-  // the home origin a whole encoder count in mm
-  const bool home = z.what == "home";
-  json values = json::array();
-  for (double v : z.values)
-    values.push_back(home ? static_cast<double>(std::llround(v * 1e6)) * 1e-3 : f32(static_cast<float>(v)));
-  const char* unit = home ? "mm" : z.what == "current_offset" ? "A" : z.what == "pressure_zero" ? "Pa" : "";
-  return {{"what", z.what}, {"t_device_s", z.t_device_s}, {"values", values},
-          {"values_unit", unit}, {"committed", z.committed}};
+IndentationSettings indentation_settings_from_json(const json& j, const std::string& where) {
+  // result.json's messages: "missing key \"parameters.analysis.poisson\"", "\"parameters.reps\" is
+  // not a number"
+  const format::JsonSource src(j, where, format::Naming::dotted_path);
+  IndentationSettings s;
+  format::read_fields(src, s, kSettingsFields);
+  const format::JsonSource a(src.object("analysis"), where + "analysis.", format::Naming::dotted_path);
+  analysis::IndentationParams& p = s.analysis;
+  format::read_fields(a, p, kParamsFields);
+  if (a.has("thickness_mm"))
+    p.thickness = analysis::Thickness{format::from_file(a.number("thickness_mm", {}), kMm),
+                                      a.has("bonding") && a.text("bonding") == "unbonded"
+                                          ? analysis::Bonding::unbonded
+                                          : analysis::Bonding::bonded};
+  if (a.has("force_noise_N")) p.force_noise_N = a.number("force_noise_N", {});
+  return s;
 }
 
 }  // namespace palp

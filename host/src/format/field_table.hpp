@@ -12,13 +12,16 @@
 //   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
 //
 // A member is a double, an optional double (null in the file when absent), an int, a uint32, a
-// size_t, a bool, a string or a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]). The file
+// size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]), a
+// vector of doubles (an array, each element scaled; the Source's numbers(key) reads it), or a
+// protocol message's float (written as its shortest decimal, f32) or uint16. The file
 // value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
 // reader takes a Source, the format's checked access to one JSON
 // object with its own error messages (JsonSource below for "where: \"key\" must be a number";
 // rig_detail::Fields for the rig and plan files' "file: key: problem" with ranges).
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +30,7 @@
 #include <span>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -61,13 +65,23 @@ inline double from_file(double file_value, double scale) {
 template <class T>
 struct Field {
   using Member = std::variant<double T::*, std::optional<double> T::*, int T::*, std::uint32_t T::*,
-                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*>;
+                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*,
+                              std::vector<double> T::*, float T::*, std::uint16_t T::*>;
   const char* key;
   Member member;
   double scale = 1.0;  ///< file value = SI value x scale
   Need need = Need::required;
   Range range{};
 };
+
+/// The shortest decimal of a protocol f32 as a double (0.01f is written 0.01, not 0.009999999776).
+inline double f32(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  double d = 0;
+  std::from_chars(buf, r.ptr, d);
+  return d;
+}
 
 /// A pose in the files' form: [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg].
 inline nlohmann::json pose_mm_deg(const Pose& p) {
@@ -88,9 +102,14 @@ void write_fields(Json& j, const T& v, std::span<const Field<T>> table) {
           using M = std::remove_cvref_t<decltype(v.*member)>;
           const M& x = v.*member;
           if constexpr (std::is_same_v<M, double>) j[f.key] = x * f.scale;
+          else if constexpr (std::is_same_v<M, float>) j[f.key] = f32(x) * f.scale;
           else if constexpr (std::is_same_v<M, std::optional<double>>) j[f.key] = x ? Json(*x * f.scale) : Json(nullptr);
           else if constexpr (std::is_same_v<M, Pose>) j[f.key] = pose_mm_deg(x);
-          else j[f.key] = x;
+          else if constexpr (std::is_same_v<M, std::vector<double>>) {
+            Json a = Json::array();
+            for (double e : x) a.push_back(e * f.scale);
+            j[f.key] = std::move(a);
+          } else j[f.key] = x;
         },
         f.member);
   }
@@ -102,8 +121,9 @@ void write_fields(Json& j, const T& v, const Field<T> (&table)[N]) {
 
 /// Every field of `table` but the Need::written ones from `src`, a format's checked access to a
 /// JSON object: has(key) (present and not null), number(key, range), integer(key, range),
-/// boolean(key), text(key) and, where the format has poses, pose(key), each throwing its ConfigError when the key is absent or
-/// the value is not of its kind or range. An optional key that is absent is skipped.
+/// boolean(key), text(key) and, where the format has them, pose(key) and numbers(key) (a vector
+/// of doubles), each throwing its ConfigError when the key is absent or the value is not of its
+/// kind or range. An optional key that is absent is skipped.
 // GCC 12 sees the visit's store into an optional<double> member of a struct that holds none (the
 // alternative is instantiated for every table) as a write past its end: a false positive.
 #if defined(__GNUC__) && !defined(__clang__)
@@ -122,11 +142,21 @@ void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
           if constexpr (std::is_same_v<M, double> || std::is_same_v<M, std::optional<double>>)
             x = from_file(src.number(f.key, f.range), f.scale);
           else if constexpr (std::is_same_v<M, int>) x = static_cast<int>(src.integer(f.key, f.range));
-          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t>)
+          else if constexpr (std::is_same_v<M, float>)
+            x = static_cast<float>(from_file(src.number(f.key, f.range), f.scale));
+          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t> ||
+                             std::is_same_v<M, std::uint16_t>)
             x = static_cast<M>(src.integer(f.key, f.range));
           else if constexpr (std::is_same_v<M, bool>) x = src.boolean(f.key);
           else if constexpr (std::is_same_v<M, std::string>) x = src.text(f.key);
-          else if constexpr (requires { src.pose(f.key); }) x = src.pose(f.key);
+          else if constexpr (std::is_same_v<M, std::vector<double>>) {
+            if constexpr (requires { src.numbers(f.key); }) {
+              x.clear();
+              for (double e : src.numbers(f.key)) x.push_back(from_file(e, f.scale));
+            } else {
+              throw ConfigError(std::string(f.key) + ": this format's reader takes no arrays");
+            }
+          } else if constexpr (requires { src.pose(f.key); }) x = src.pose(f.key);
           else throw ConfigError(std::string(f.key) + ": this format's reader takes no poses");
         },
         f.member);
@@ -140,18 +170,25 @@ void read_fields(const Source& src, T& v, const Field<T> (&table)[N]) {
   read_fields(src, v, std::span<const Field<T>>(table));
 }
 
-/// The trace and map files' Source: ConfigError "where: \"key\" must be a number" (an integer
-/// is any number, truncated, as those readers always took it); no ranges.
+/// How a JsonSource names a bad key.
+enum class Naming {
+  where_colon_key,  ///< "where: \"key\" must be a number"; an absent key reads as null
+  dotted_path,      ///< result.json's "\"parameters.key\" is not a number", "missing key \"parameters.key\""
+};
+
+/// A JSON object's Source: ConfigError naming the key (Naming); an integer is any number,
+/// truncated, as the trace and map readers always took it; no ranges.
 class JsonSource {
  public:
-  JsonSource(const nlohmann::json& j, std::string where) : j_(j), where_(std::move(where)) {}
+  JsonSource(const nlohmann::json& j, std::string where, Naming naming = Naming::where_colon_key)
+      : j_(j), where_(std::move(where)), naming_(naming) {}
   bool has(const char* key) const {
     const auto it = j_.find(key);
     return it != j_.end() && !it->is_null();
   }
   double number(const char* key, const Range&) const {
     const auto& v = at(key);
-    if (!v.is_number()) fail(key, "must be a number");
+    if (!v.is_number()) wrong(key, "a number");
     return v.get<double>();
   }
   long long integer(const char* key, const Range& r) const {
@@ -159,13 +196,28 @@ class JsonSource {
   }
   bool boolean(const char* key) const {
     const auto& v = at(key);
-    if (!v.is_boolean()) fail(key, "must be true or false");
+    if (!v.is_boolean()) wrong(key, "true or false");
     return v.get<bool>();
   }
   std::string text(const char* key) const {
     const auto& v = at(key);
-    if (!v.is_string()) fail(key, "must be a string");
+    if (!v.is_string()) wrong(key, "a string");
     return v.get<std::string>();
+  }
+  std::vector<double> numbers(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_array()) wrong(key, "an array of numbers");
+    std::vector<double> out;
+    for (const auto& e : v) {
+      if (!e.is_number()) wrong(key, "an array of numbers");
+      out.push_back(e.get<double>());
+    }
+    return out;
+  }
+  const nlohmann::json& object(const char* key) const {
+    const auto& v = at(key);
+    if (!v.is_object()) wrong(key, "an object");
+    return v;
   }
   Pose pose(const char* key) const {
     const auto& v = at(key);
@@ -179,19 +231,27 @@ class JsonSource {
     }
     return pose_of_mm_deg(x);
   }
+  /// ConfigError naming the key with `problem` ("must be ...") after it.
   [[noreturn]] void fail(const char* key, const std::string& problem) const {
+    if (naming_ == Naming::dotted_path) throw ConfigError("\"" + where_ + key + "\" " + problem);
     throw ConfigError(where_ + ": \"" + key + "\" " + problem);
   }
 
  private:
-  /// The value, or null when the key is absent.
+  [[noreturn]] void wrong(const char* key, const char* kind) const {
+    fail(key, std::string(naming_ == Naming::dotted_path ? "is not " : "must be ") + kind);
+  }
+  /// The value; when the key is absent null (where_colon_key) or ConfigError (dotted_path).
   const nlohmann::json& at(const char* key) const {
     static const nlohmann::json null;
     const auto it = j_.find(key);
-    return it == j_.end() ? null : *it;
+    if (it != j_.end()) return *it;
+    if (naming_ == Naming::dotted_path) throw ConfigError("missing key \"" + where_ + key + "\"");
+    return null;
   }
   const nlohmann::json& j_;
   std::string where_;
+  Naming naming_;
 };
 
 }  // namespace palp::format

@@ -220,6 +220,19 @@ TEST_F(ResultDir, LoadErrorsNameTheFileAndTheProblem) {
   EXPECT_THAT(message(dir), HasSubstr((dir / "gone.csv").string() + ": listed in result.json but missing"));
 }
 
+TEST_F(ResultDir, AnIncompleteParameterBlockIsARecordingErrorNamingTheFileAndTheKey) {
+  const fs::path dir = palp::write_result(root_ / "b", synthetic_run());
+  palp::LoadedResult loaded = palp::load_result(dir);
+  loaded.summary["parameters"]["analysis"].erase("kv_N_per_mm");
+  try {
+    palp::indentation_run_of(loaded);
+    FAIL() << "no RecordingError";
+  } catch (const palp::RecordingError& e) {
+    EXPECT_THAT(e.what(), HasSubstr((dir / "result.json").string()));
+    EXPECT_THAT(e.what(), HasSubstr("missing key \"parameters.analysis.kv_N_per_mm\""));
+  }
+}
+
 TEST(IndentationSettings, PresetsAreTheIssuesProtocols) {
   const auto one = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
   const auto two = palp::IndentationSettings::preset(palp::IndentationPreset::two_d);
@@ -263,6 +276,235 @@ TEST(IndentationSettings, BadSettingsAreOneLineConfigErrorsNamingTheSetting) {
   EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = NAN; }),
             "indentation settings: displacement_limit_m must lie in 0..0.1 m (0: no limit)");
   EXPECT_EQ(message([](auto&) {}), "valid");
+}
+
+TEST(IndentationSettingsJson, EverySettingReadsBackAsWritten) {
+  palp::IndentationSettings s = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
+  s.start_A = 0.6;
+  s.stop_A = 2.25;
+  s.step_A = 0.02;
+  s.dwell_s = 0.2;
+  s.repetitions = 3;
+  s.unload = false;
+  s.displacement_limit_m = 3.5e-3;
+  s.stream_rate_Hz = 500;
+  s.zero_pressure = false;
+  s.zero_pressure_s = 0.75;
+  s.settle_s = 2.5;
+  auto& p = s.analysis;
+  p.force_constant_N_per_A = 3.1;
+  p.contact_current_A = 0.45;
+  p.spring_N_per_m = 51.2;
+  p.tip_radius_m = 3e-3;
+  p.poisson = 0.45;
+  p.bias_current_A = 1.25;
+  p.thickness = palp::analysis::Thickness{12e-3, palp::analysis::Bonding::bonded};
+  p.window_lo_m = 0.3e-3;
+  p.window_hi_m = 0.9e-3;
+  p.local_half_width_m = 40e-6;
+  p.tangent_depths_m = {0.5e-3, 1.5e-3};
+  p.min_points = 17;
+  p.force_noise_N = 0.002;
+
+  const palp::IndentationSettings r = palp::indentation_settings_from_json(palp::indentation_settings_json(s));
+  EXPECT_EQ(r.start_A, 0.6);
+  EXPECT_EQ(r.stop_A, 2.25);
+  EXPECT_EQ(r.step_A, 0.02);
+  EXPECT_EQ(r.dwell_s, 0.2);
+  EXPECT_EQ(r.repetitions, 3);
+  EXPECT_FALSE(r.unload);
+  EXPECT_DOUBLE_EQ(r.displacement_limit_m, 3.5e-3);
+  EXPECT_EQ(r.stream_rate_Hz, 500);
+  EXPECT_FALSE(r.zero_pressure);
+  EXPECT_EQ(r.zero_pressure_s, 0.75);
+  EXPECT_EQ(r.settle_s, 2.5);
+  const auto& q = r.analysis;
+  EXPECT_EQ(q.force_constant_N_per_A, 3.1);
+  EXPECT_EQ(q.contact_current_A, 0.45);
+  EXPECT_DOUBLE_EQ(q.spring_N_per_m, 51.2);
+  EXPECT_DOUBLE_EQ(q.tip_radius_m, 3e-3);
+  EXPECT_EQ(q.poisson, 0.45);
+  EXPECT_EQ(q.bias_current_A, 1.25);
+  ASSERT_TRUE(q.thickness);
+  EXPECT_DOUBLE_EQ(q.thickness->thickness_m, 12e-3);
+  EXPECT_EQ(q.thickness->bonding, palp::analysis::Bonding::bonded);
+  EXPECT_DOUBLE_EQ(q.window_lo_m, 0.3e-3);
+  EXPECT_DOUBLE_EQ(q.window_hi_m, 0.9e-3);
+  EXPECT_DOUBLE_EQ(q.local_half_width_m, 40e-6);
+  ASSERT_EQ(q.tangent_depths_m.size(), 2u);
+  EXPECT_DOUBLE_EQ(q.tangent_depths_m[0], 0.5e-3);
+  EXPECT_DOUBLE_EQ(q.tangent_depths_m[1], 1.5e-3);
+  EXPECT_EQ(q.min_points, 17);
+  EXPECT_EQ(q.force_noise_N, 0.002);
+}
+
+TEST(IndentationSettingsJson, AMissingOrMistypedSettingIsNamedWithItsPath) {
+  auto message = [](const json& j) -> std::string {
+    try {
+      palp::indentation_settings_from_json(j, "parameters.");
+    } catch (const palp::ConfigError& e) {
+      return e.what();
+    }
+    return "no ConfigError";
+  };
+  json j = palp::indentation_settings_json(palp::IndentationSettings{});
+  j["analysis"].erase("poisson");
+  EXPECT_EQ(message(j), "missing key \"parameters.analysis.poisson\"");
+  j["analysis"]["poisson"] = "half";
+  EXPECT_EQ(message(j), "\"parameters.analysis.poisson\" is not a number");
+  j["analysis"]["poisson"] = 0.5;
+  j["analysis"]["tangent_depths_mm"] = json::array({1.0, "two"});
+  EXPECT_EQ(message(j), "\"parameters.analysis.tangent_depths_mm\" is not an array of numbers");
+}
+
+TEST(DeviceJson, EveryDeviceInfoFieldReadsBackAsWritten) {
+  palp::DeviceInfo d;
+  d.serial = "PALP-0042";
+  d.board = "stm32g474";
+  d.git_hash = "3f9c2e1";
+  d.firmware_version = "1.2.0";
+  d.protocol_major = 1;
+  d.protocol_minor = 3;
+  d.schema_hash = 0xDEADBEEF;
+  d.capabilities = 0x49;
+  d.max_current_A = 3.2;
+  d.control_rate_Hz = 20000;
+  d.max_stream_rate_Hz = 10000;
+  d.heartbeat_timeout_s = 0.5;
+  d.max_payload = 1024;
+  const json j = palp::device_json(d);
+  EXPECT_EQ(j["protocol"], "1.3");
+  EXPECT_EQ(j["max_payload_bytes"], 1024);
+  const palp::DeviceInfo r = palp::device_info_from_json(j, "device");
+  EXPECT_EQ(r.serial, d.serial);
+  EXPECT_EQ(r.board, d.board);
+  EXPECT_EQ(r.git_hash, d.git_hash);
+  EXPECT_EQ(r.firmware_version, d.firmware_version);
+  EXPECT_EQ(r.protocol_major, 1);
+  EXPECT_EQ(r.protocol_minor, 3);
+  EXPECT_EQ(r.schema_hash, 0xDEADBEEFu);
+  EXPECT_EQ(r.capabilities, 0x49u);
+  EXPECT_EQ(r.max_current_A, 3.2);
+  EXPECT_EQ(r.control_rate_Hz, 20000);
+  EXPECT_EQ(r.max_stream_rate_Hz, 10000);
+  EXPECT_EQ(r.heartbeat_timeout_s, 0.5);
+  EXPECT_EQ(r.max_payload, 1024u);
+}
+
+TEST_F(ResultDir, ASidecarFromTheOldPalpctlGivesItsDeviceWithProtocolAndCapabilities) {
+  // run.json as palpctl stream wrote it before its device block was the SDK's
+  const fs::path file = root_ / "run.json";
+  std::ofstream(file) << R"json({
+  "schema": "palp.recording/1",
+  "sdk_version": "0.1.0",
+  "created_utc": "2026-11-20T10:00:00Z",
+  "program": null,
+  "program_reason": "palpctl stream: no program ran",
+  "device": {
+    "board": "palp-sim",
+    "control_rate_Hz": 20000.0,
+    "firmware_version": "0.1.0",
+    "git_hash": "sim",
+    "heartbeat_timeout_s": 0.5,
+    "max_current_A": 4.0,
+    "max_payload_bytes": 1024,
+    "max_stream_rate_Hz": 10000.0,
+    "params": {"current_clamp_A": 3.2},
+    "pressure_channels": 6,
+    "protocol_version": "1.0",
+    "schema_hash": 305419896,
+    "serial": "SIM-0001",
+    "simulated": true,
+    "uri": "sim://127.0.0.1:7070"
+  },
+  "calibration": null,
+  "calibration_reason": "not read",
+  "stroke_origin_z_mm": null,
+  "stroke_origin_z_mm_reason": "the device's stroke origin is not homed (palpctl calibrate home)",
+  "zeroing": []
+})json";
+  const palp::Sidecar side = palp::read_sidecar(file);
+  const palp::DeviceInfo d = palp::device_info_from_json(side.device, "run.json: device");
+  EXPECT_EQ(d.serial, "SIM-0001");
+  EXPECT_EQ(d.board, "palp-sim");
+  EXPECT_EQ(d.protocol_major, 1);
+  EXPECT_EQ(d.protocol_minor, 0);
+  EXPECT_EQ(d.schema_hash, 305419896u);
+  EXPECT_EQ(d.max_payload, 1024u);
+  EXPECT_EQ(d.control_rate_Hz, 20000.0);
+  EXPECT_TRUE(d.has(palp::proto::Capability::simulated));
+  EXPECT_TRUE(d.has(palp::proto::Capability::pressure));
+  EXPECT_FALSE(d.has(palp::proto::Capability::hid));
+}
+
+TEST(DeviceJson, AProtocolThatIsNotMajorDotMinorIsRefusedByName) {
+  try {
+    palp::device_info_from_json({{"protocol", "one"}}, "run.json: device");
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "run.json: device: \"protocol\" must be \"major.minor\", not \"one\"");
+  }
+}
+
+TEST(ProgramJson, ARampIsWrittenInLabUnitsAndReadsBackToTheSameMessage) {
+  palp::RampProgram m;
+  m.start_A = 0.5f;
+  m.stop_A = 3.0f;
+  m.step_A = 0.01f;
+  m.dwell_s = 0.1f;
+  m.repetitions = 5;
+  m.unload = 0;
+  m.displacement_limit_counts = 4500;
+  const json j = palp::program_json(m);
+  EXPECT_EQ(j, json::parse(R"({"start_A": 0.5, "stop_A": 3.0, "step_A": 0.01, "dwell_s": 0.1,
+                               "reps": 5, "unload": false, "displacement_limit_mm": 4.5})"));
+  palp::RampProgram r;
+  palp::read_program(j, "ramp", r);
+  EXPECT_EQ(r, m);
+}
+
+TEST(ProgramJson, SweepAndMultisineReadBackToTheSameMessages) {
+  palp::SweepProgram s;
+  s.offset_A = 1.25f;
+  s.amplitude_A = 0.05f;
+  s.start_Hz = 0.5f;
+  s.stop_Hz = 40.0f;
+  s.step_Hz = 0.25f;
+  s.settle_cycles = 7;
+  s.settle_min_s = 0.8f;
+  s.measure_cycles = 9;
+  palp::SweepProgram s2;
+  palp::read_program(palp::program_json(s), "sweep", s2);
+  EXPECT_EQ(s2, s);
+
+  palp::MultisineProgram m;
+  m.offset_A = 1.1f;
+  m.fundamental_Hz = 0.1f;
+  m.line_first = 5;
+  m.line_last = 201;
+  m.line_step = 4;
+  m.line_amplitude_A = 0.003f;
+  m.phase_mode = palp::proto::PhaseMode::schroeder;
+  m.phase_seed = 77;
+  m.periods = 6;
+  const json j = palp::program_json(m);
+  EXPECT_EQ(j["phase_mode"], "schroeder");
+  EXPECT_EQ(j["line_amplitude_A"], 0.003);  // the f32's shortest decimal
+  palp::MultisineProgram m2;
+  palp::read_program(j, "multisine", m2);
+  EXPECT_EQ(m2, m);
+}
+
+TEST(ProgramJson, AMistypedParameterIsAConfigErrorNamingIt) {
+  json j = palp::program_json(palp::SweepProgram{});
+  j["step_Hz"] = "fast";
+  palp::SweepProgram m;
+  try {
+    palp::read_program(j, "run.json: program.parameters", m);
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "run.json: program.parameters: \"step_Hz\" must be a number");
+  }
 }
 
 }  // namespace
