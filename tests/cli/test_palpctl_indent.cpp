@@ -95,6 +95,9 @@ TEST_F(PalpctlIndent, JsonPrintsTheIssueKeysAndTheResultDirectoryReadsBack) {
 TEST_F(PalpctlIndent, CtrlCMidRampExits130AndWritesTheResultOfWhatWasRecorded) {
   const std::string out = (dir_ / "cut").string();
   ASSERT_TRUE(sim_.wait_no_client());
+  // paced at 20x real time, the 1d preset's 5 repetitions (~120 s of device time) take ~6 s, so
+  // the SIGINT 1 s in lands mid-ramp however fast the simulation runs unpaced
+  ASSERT_EQ(sim_.control("pace 20").rfind("ok", 0), 0u);
   const std::vector<std::string> args = {PALPCTL_BINARY, "--uri", sim_.uri(), "indent",
                                          "--rate-Hz", "200", "--out-dir", out};
   const pid_t pid = ::fork();
@@ -108,7 +111,6 @@ TEST_F(PalpctlIndent, CtrlCMidRampExits130AndWritesTheResultOfWhatWasRecorded) {
     ::execv(argv[0], argv.data());
     std::_Exit(127);
   }
-  // the 1d preset's 5 repetitions take ~120 s of device time, a few seconds here: 1 s is mid-ramp
   std::this_thread::sleep_for(std::chrono::seconds(1));
   ::kill(pid, SIGINT);
   int status = 0;
