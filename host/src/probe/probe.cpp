@@ -121,10 +121,9 @@ Params Probe::params() {
 
 void Probe::set_params(const Params& p) {
   Session& s = impl_->s();
-  proto::SetParams sp;
-  static_assert(sizeof(sp) == sizeof(p));
-  sp = std::bit_cast<proto::SetParams>(p);
-  const auto in_force = expect<proto::Params>(s.request(sp, s.default_timeout()), "SetParams");
+  // field by field from the catalogue: does not compile when the two messages' fields differ
+  const auto in_force = expect<proto::Params>(
+      s.request(proto::fields_as<proto::SetParams>(p), s.default_timeout()), "SetParams");
   s.set_heartbeat_timeout_ms(in_force.heartbeat_timeout_ms);
 }
 
@@ -136,9 +135,8 @@ Calibration Probe::calibration() {
 
 void Probe::set_calibration(const Calibration& c) {
   Session& s = impl_->s();
-  static_assert(sizeof(proto::SetCalibration) == sizeof(c));
-  expect<proto::Calibration>(s.request(std::bit_cast<proto::SetCalibration>(c), s.default_timeout()),
-                             "SetCalibration");
+  expect<proto::Calibration>(
+      s.request(proto::fields_as<proto::SetCalibration>(c), s.default_timeout()), "SetCalibration");
 }
 
 void Probe::commit_calibration() {

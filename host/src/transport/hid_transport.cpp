@@ -26,6 +26,7 @@
 #include "palp/error.hpp"
 #include "palp/protocol/usb.hpp"
 #include "transport/factories.hpp"
+#include "transport/staging.hpp"
 #include "transport/hid_api.hpp"
 #include "transport/usb_api.hpp"
 
@@ -82,37 +83,28 @@ class HidTransport final : public Transport {
 
   std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
     if (buf.empty()) return 0;
-    if (staged_off_ < staged_len_) return unstage(buf);
+    if (staging_.pending()) return staging_.take(buf);
     const bool direct = buf.size() >= kReport;
-    std::uint8_t* dst = direct ? buf.data() : staging_;
+    std::uint8_t* dst = direct ? buf.data() : staging_.data();
     const int ms = static_cast<int>(std::clamp<long long>(timeout.count(), 0, INT_MAX));
     const int n = api_->read_timeout(h_, dst, kReport, ms);
     if (n < 0)
       throw ConnectionError(label_ + ": the controller was unplugged or stopped answering (" +
                             api_->error(&h_) + ")");
     if (n == 0 || direct) return static_cast<std::size_t>(n);
-    staged_off_ = 0;
-    staged_len_ = static_cast<std::size_t>(n);
-    return unstage(buf);
+    return staging_.keep(static_cast<std::size_t>(n), buf);
   }
 
   std::uint32_t max_device_bytes_per_s() const override { return pu::kHidBytesPerS; }
   const std::string& uri() const override { return uri_; }
 
  private:
-  std::size_t unstage(std::span<std::uint8_t> buf) {
-    const std::size_t n = std::min(buf.size(), staged_len_ - staged_off_);
-    std::memcpy(buf.data(), staging_ + staged_off_, n);
-    staged_off_ += n;
-    return n;
-  }
 
   std::shared_ptr<HidApi> api_;
   HidHandle h_;
   std::string uri_, label_;
   std::vector<std::uint8_t> held_;  ///< bytes of a frame whose delimiter is not written yet
-  std::uint8_t staging_[kReport] = {};
-  std::size_t staged_off_ = 0, staged_len_ = 0;
+  Staging<kReport> staging_;
 };
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "palp/error.hpp"
 #include "palp/protocol/usb.hpp"
 #include "transport/factories.hpp"
+#include "transport/staging.hpp"
 #include "transport/usb_api.hpp"
 
 namespace palp::detail {
@@ -156,9 +157,9 @@ class UsbTransport final : public Transport {
 
   std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
     if (buf.empty()) return 0;
-    if (staged_off_ < staged_len_) return unstage(buf);
+    if (staging_.pending()) return staging_.take(buf);
     const bool direct = buf.size() >= pu::kBulkPacketSize;
-    std::uint8_t* dst = direct ? buf.data() : staging_;
+    std::uint8_t* dst = direct ? buf.data() : staging_.data();
     const std::size_t len =
         direct ? std::min(buf.size() / pu::kBulkPacketSize * pu::kBulkPacketSize, kMaxTransfer)
                : pu::kBulkPacketSize;
@@ -168,21 +169,13 @@ class UsbTransport final : public Transport {
     if (r < 0 && r != kUsbErrorTimeout && r != kUsbErrorInterrupted) fail("reading", r);
     if (got <= 0) return 0;
     if (direct) return static_cast<std::size_t>(got);
-    staged_off_ = 0;
-    staged_len_ = static_cast<std::size_t>(got);
-    return unstage(buf);
+    return staging_.keep(static_cast<std::size_t>(got), buf);
   }
 
   std::uint32_t max_device_bytes_per_s() const override { return pu::kBulkBytesPerS; }
   const std::string& uri() const override { return uri_; }
 
  private:
-  std::size_t unstage(std::span<std::uint8_t> buf) {
-    const std::size_t n = std::min(buf.size(), staged_len_ - staged_off_);
-    std::memcpy(buf.data(), staging_ + staged_off_, n);
-    staged_off_ += n;
-    return n;
-  }
 
   [[noreturn]] void throw_write_timeout(std::size_t total, std::size_t sent,
                                         std::chrono::milliseconds timeout) const {
@@ -204,8 +197,7 @@ class UsbTransport final : public Transport {
   UsbHandle h_;
   std::string uri_, label_;
   std::uint8_t zlp_ = 0;
-  std::uint8_t staging_[pu::kBulkPacketSize] = {};
-  std::size_t staged_off_ = 0, staged_len_ = 0;
+  Staging<pu::kBulkPacketSize> staging_;
 };
 
 }  // namespace
