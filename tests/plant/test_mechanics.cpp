@@ -18,23 +18,33 @@ using test::Rig;
 // current-sense noise through the current loop moves the coil by a few um rms, which would
 // swamp later, smaller half-cycles.
 TEST(FreeAir, RingDownAtFloatCurrentHasPapersDampedFrequencyAndDampingRatio) {
-  Rig rig{PlantConfig{}};
-  const double sf = rig.plant.config().mechanics.float_position_m;
-  rig.start_at(sf + 2e-3, 0.5);
-  std::vector<double> t, x;
-  double lowest = 1.0;
-  rig.run(0.5, 3.0, [&](const Plant& p) {
-    t.push_back(p.time_s());
-    x.push_back(p.position_m());
-    lowest = std::min(lowest, p.position_m());
-  });
-  const auto r = test::analyse_ring_down(t, x, sf, 3);
-  ASSERT_GE(r.crossings, 4);
-  EXPECT_NEAR(r.omega_d_rad_per_s, 15.95, 0.01 * 15.95);  // tolerance 1 %
-  EXPECT_NEAR(r.zeta, 0.2595, 0.03 * 0.2595);             // tolerance 3 %
-  EXPECT_GE(lowest, sf - 1e-3);                           // the swing stays where K_f is flat
-  std::printf("free air (current loop, noise): omega_d = %.4f rad/s, zeta = %.4f\n",
-              r.omega_d_rad_per_s, r.zeta);
+  // averaged over eight noise seeds: the current-sense noise through the loop moves one 3 s
+  // ring-down's estimate by about 0.6 % rms (seeds 1..12 gave 15.82 to 16.17 rad/s)
+  constexpr int kSeeds = 8;
+  double omega_d = 0.0, zeta = 0.0;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    PlantConfig cfg;
+    cfg.noise_seed = static_cast<std::uint64_t>(seed);
+    Rig rig{cfg};
+    const double sf = rig.plant.config().mechanics.float_position_m;
+    rig.start_at(sf + 2e-3, 0.5);
+    std::vector<double> t, x;
+    double lowest = 1.0;
+    rig.run(0.5, 3.0, [&](const Plant& p) {
+      t.push_back(p.time_s());
+      x.push_back(p.position_m());
+      lowest = std::min(lowest, p.position_m());
+    });
+    const auto r = test::analyse_ring_down(t, x, sf, 3);
+    ASSERT_GE(r.crossings, 4) << "seed " << seed;
+    EXPECT_GE(lowest, sf - 1e-3) << "seed " << seed;  // the swing stays where K_f is flat
+    omega_d += r.omega_d_rad_per_s / kSeeds;
+    zeta += r.zeta / kSeeds;
+  }
+  EXPECT_NEAR(omega_d, 15.95, 0.01 * 15.95);  // tolerance 1 %
+  EXPECT_NEAR(zeta, 0.2595, 0.03 * 0.2595);   // tolerance 3 %
+  std::printf("free air (current loop, noise, 8 seeds): omega_d = %.4f rad/s, zeta = %.4f\n",
+              omega_d, zeta);
 }
 
 // The same with an ideal current source (back-EMF cancelled, no noise): the model itself.

@@ -77,36 +77,9 @@ TEST(CurrentSense, NoiseHasTheConfiguredSpreadAroundTheTrueCurrent) {
   EXPECT_NEAR(rms, std::sqrt(2e-3 * 2e-3 + lsb * lsb / 12.0), 0.05 * 2e-3);
 }
 
-TEST(Noise, GaussianIsStandardNormal) {
-  double sum = 0.0, sum2 = 0.0;
-  const int n = 200000;
-  for (int k = 0; k < n; ++k) {
-    const double g = gaussian(42, 3, static_cast<std::uint64_t>(k));
-    sum += g;
-    sum2 += g * g;
-  }
-  EXPECT_NEAR(sum / n, 0.0, 0.01);
-  EXPECT_NEAR(sum2 / n, 1.0, 0.01);
-}
-
-TEST(Noise, TheBracketHoldsTheExactDeviateAndIsNarrow) {
-  const std::uint64_t key = noise_key(42, 3);
-  double widest = 0.0;
-  for (std::uint64_t k = 0; k < 2'000'000; ++k) {
-    const GaussianBracket b = gaussian_bracket(key, k);
-    const double exact = gaussian_at(key, k);
-    ASSERT_LE(b.lo, exact) << "tick " << k;
-    ASSERT_GE(b.hi, exact) << "tick " << k;
-    widest = std::max(widest, b.hi - b.lo);
-  }
-  // narrow: a pressure code is 0.76 sigma wide, so a code boundary falls inside rarely
-  EXPECT_LT(widest, 2e-4);
-  EXPECT_EQ(gaussian_at(key, 17), gaussian(42, 3, 17));
-}
-
-// The readings the plant takes through the bracket are those of the exact deviate: every code of
-// a pad run in contact against the transfer functions applied to gaussian() itself.
-TEST(Noise, QuantisedReadingsEqualTheTransferOfTheExactDeviate) {
+// The plant's readings are the sensors' transfer functions applied to their streams' deviates:
+// every code of a pad run in contact against gaussian(seed, stream, tick) itself.
+TEST(Noise, ReadingsAreTheTransferOfTheirStreamsDeviates) {
   PlantConfig cfg;
   cfg.noise_seed = 11;
   cfg.sensors.encoder_noise_m = 0.3e-6;  // the encoder's optional jitter too

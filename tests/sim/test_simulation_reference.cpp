@@ -102,24 +102,24 @@ TEST(SimulationReference, SolidAtPosition3At20kHzMatchesTheRecordedRun) {
   const Fingerprint r = run_scenario("solid_1d", 0.027, 0.0, 20000, 7, kMs);
   EXPECT_GT(r.contact_force_N, 0.5);
   EXPECT_EQ(r.device_bytes, 105728u);
-  EXPECT_EQ(r.device_hash, 15934854551251312045u);
-  EXPECT_EQ(r.state_hash, 3312868999626281709u);
+  EXPECT_EQ(r.device_hash, 16709861992787272456u);
+  EXPECT_EQ(r.state_hash, 861942873135621014u);
 }
 
 TEST(SimulationReference, SolidAtPosition3At40kHzMatchesTheRecordedRun) {
   const Fingerprint r = run_scenario("solid_1d", 0.027, 0.0, 40000, 7, kMs);
   EXPECT_GT(r.contact_force_N, 0.5);
   EXPECT_EQ(r.device_bytes, 105728u);
-  EXPECT_EQ(r.device_hash, 9462129712036939900u);
-  EXPECT_EQ(r.state_hash, 14645458020958678637u);
+  EXPECT_EQ(r.device_hash, 17710252903441990807u);
+  EXPECT_EQ(r.state_hash, 17731808410703145065u);
 }
 
 TEST(SimulationReference, PadWithPressureChannelsAt20kHzMatchesTheRecordedRun) {
   const Fingerprint r = run_scenario("pad_2d", 0.080, 0.075, 20000, 7, kMs);
   EXPECT_GT(r.contact_force_N, 0.5);
   EXPECT_EQ(r.device_bytes, 105728u);
-  EXPECT_EQ(r.device_hash, 2111249653377817706u);
-  EXPECT_EQ(r.state_hash, 6512681307867192363u);
+  EXPECT_EQ(r.device_hash, 9224993567899357944u);
+  EXPECT_EQ(r.state_hash, 4440716160550235340u);
 }
 
 }  // namespace

@@ -1,9 +1,8 @@
-// Counter-based Gaussian noise (splitmix64 hash of seed, stream and tick; Box-Muller).
+// Counter-based Gaussian noise: a splitmix64 hash of (stream key, tick) through a 256-layer
+// ziggurat (README.md "Noise").
 #include "palp/plant/noise.hpp"
 
-#include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -20,90 +19,102 @@ std::uint64_t mix(std::uint64_t z) {
 // Uniform in (0, 1]: 53 random bits, never zero (log stays finite).
 double unit(std::uint64_t bits) { return (static_cast<double>(bits >> 11) + 1.0) * 0x1.0p-53; }
 
+// Salts that derive further independent words from a draw's word, for the rare draws that need
+// more than one (the wedges, the tail and a rejected point).
+constexpr std::uint64_t kWedgeSalt = 0xD1B54A32D192ED03ull;
+constexpr std::uint64_t kTailSalt = 0x8CB92BA72F3D8DD7ull;
+constexpr std::uint64_t kRetrySalt = 0xA0761D6478BD642Full;
+
+double density(double x) { return std::exp(-0.5 * x * x); }  // unnormalised
+
+// The ziggurat of the half-normal density f(x) = exp(-x^2 / 2) (Marsaglia and Tsang 2000): 256
+// layers of equal area v. Layer 0 is the base strip, of width x[0] = v / f(r) and height f(r):
+// the rectangle [0, r] x [0, f(r)] plus, beyond r, the tail (the two have area v together).
+// Layer k >= 1 is the rectangle of width x[k] between the heights f(x[k]) and f(x[k + 1]), with
+// x[1] = r > x[2] > ... > x[256] = 0. r is found by bisection so that the layers stack exactly
+// to f(0) = 1 (r = 3.6541528853610088 for 256 layers).
+constexpr int kLayers = 256;
+struct Ziggurat {
+  std::array<double, kLayers + 1> x{};      // edges, above
+  std::array<double, kLayers + 1> f{};      // f(x[k])
+  std::array<double, kLayers> scale{};      // x[k] 2^-53: a 53-bit integer times it is u x[k]
+  double r = 0.0;
+};
+
+// f(x[255]) + v / x[255] - 1 for a trial r: positive when the layers overshoot 1 (r too small);
+// the edges x[0 .. 255] into `edges` when given
+double stack_excess(double r, std::array<double, kLayers + 1>* edges) {
+  const double v = r * density(r) + std::sqrt(std::numbers::pi / 2.0) * std::erfc(r / std::numbers::sqrt2);
+  double x = r;
+  if (edges) {
+    (*edges)[0] = v / density(r);
+    (*edges)[1] = r;
+  }
+  for (int k = 1; k < kLayers - 1; ++k) {
+    const double top = density(x) + v / x;
+    if (!(top < 1.0)) return 1.0;  // the stack reached the peak before its last layer
+    x = std::sqrt(-2.0 * std::log(top));
+    if (edges) (*edges)[static_cast<std::size_t>(k + 1)] = x;
+  }
+  return density(x) + v / x - 1.0;
+}
+
+const Ziggurat kZig = [] {
+  double lo = 3.0, hi = 4.5;  // stack_excess(3) > 0 > stack_excess(4.5)
+  for (int k = 0; k < 200 && lo < hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (stack_excess(mid, nullptr) > 0.0 ? lo : hi) = mid;
+  }
+  std::array<double, kLayers + 1> edges{};
+  stack_excess(hi, &edges);
+  edges[kLayers] = 0.0;
+  Ziggurat z;
+  z.r = hi;
+  z.x = edges;
+  for (int k = 0; k <= kLayers; ++k) z.f[static_cast<std::size_t>(k)] = density(z.x[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < kLayers; ++k)
+    z.scale[static_cast<std::size_t>(k)] = z.x[static_cast<std::size_t>(k)] * 0x1.0p-53;
+  return z;
+}();
+
+// A half-normal deviate beyond r (Marsaglia 1964): a = -ln(u1) / r, b = -ln(u2), accepted when
+// 2 b > a^2; the words come from the draw's word, one pair per attempt.
+double tail_beyond_r(std::uint64_t word) {
+  for (;;) {
+    const std::uint64_t w1 = mix(word ^ kTailSalt);
+    const std::uint64_t w2 = mix(w1 ^ kTailSalt);
+    const double a = -std::log(unit(w1)) / kZig.r;
+    const double b = -std::log(unit(w2));
+    if (b + b > a * a) return kZig.r + a;
+    word = w2;
+  }
+}
+
 }  // namespace
 
 std::uint64_t noise_key(std::uint64_t seed, std::uint32_t stream) {
   return mix(mix(seed) ^ (static_cast<std::uint64_t>(stream) << 32));
 }
 
+double ziggurat_tail_start() { return kZig.r; }
+
+// One 64-bit word per draw: bits 0-7 pick the layer, bit 8 the sign, bits 11-63 the uniform
+// position u in [0, 1) along the layer (disjoint bits, so the three are independent). Inside
+// the layer's core (u x[k] < x[k + 1]; 98.5 % of draws) the deviate is u x[k], one multiply;
+// otherwise the wedge test against f or the tail, with words derived from this one.
 double gaussian_at(std::uint64_t key, std::uint64_t tick) {
-  const std::uint64_t a = mix(key ^ tick);
-  const std::uint64_t b = mix(a ^ 0xD1B54A32D192ED03ull);
-  return std::sqrt(-2.0 * std::log(unit(a))) * std::cos(2.0 * std::numbers::pi * unit(b));
-}
-
-namespace {
-
-// cos x = sum_k (-1)^k x^2k / (2k)!, k = 0..5: for |x| <= pi/2 the first term left out,
-// x^12 / 12!, is below 5e-7.
-constexpr std::array<double, 6> kCos = [] {
-  std::array<double, 6> c{};
-  double f = 1.0;
-  for (int k = 0; k < 6; ++k) {
-    c[static_cast<std::size_t>(k)] = (k % 2 == 0 ? 1.0 : -1.0) / f;
-    f *= (2 * k + 1) * (2 * k + 2);
+  std::uint64_t word = mix(key ^ tick);
+  for (;;) {
+    const auto k = static_cast<std::size_t>(word & 0xFFu);
+    const double sign = (word & 0x100u) ? -1.0 : 1.0;
+    const double z = static_cast<double>(word >> 11) * kZig.scale[k];
+    if (z < kZig.x[k + 1]) return sign * z;
+    if (k == 0) return sign * tail_beyond_r(word);
+    const double y = kZig.f[k] + (unit(mix(word ^ kWedgeSalt)) - 0x1.0p-53) * (kZig.f[k + 1] - kZig.f[k]);
+    if (y < density(z)) return sign * z;
+    word = mix(word ^ kRetrySalt);
   }
-  return c;
-}();
-
-// cos(2 pi t) for t in [0, 1] within 5e-7 + a few 1e-16, without branches: z = |t - round(t)|
-// in [0, 1/2], folded to w = min(z, 1/2 - z) in [0, 1/4] (cos(2 pi z) = -cos(2 pi (1/2 - z))),
-// x = 2 pi w in [0, pi/2], the series in Estrin's scheme (a short dependency chain).
-double cos_turns(double t) {
-  const double z = std::fabs(t - static_cast<double>(static_cast<int>(t + 0.5)));
-  const double w = std::min(z, 0.5 - z);
-  const double x = 2.0 * std::numbers::pi * w;
-  const double x2 = x * x, x4 = x2 * x2;
-  const auto& c = kCos;
-  const double v = (c[0] + c[1] * x2) + x4 * ((c[2] + c[3] * x2) + x4 * (c[4] + c[5] * x2));
-  return z > 0.25 ? -v : v;
-}
-
-// ln u for u in (0, 1] within 2e-13 + a few 1e-16 per unit of |ln u|: u = 2^e f with f in
-// [1, 2); f's top 7 fraction bits pick c = 1 + (i + 1/2) / 128, and ln f = ln c + ln(1 + r) with
-// r = f / c - 1, |r| < 1/256, by its series to r^4 (the first term left out, r^5 / 5, is below
-// 2e-13). The table holds 1/c and the library's ln c.
-struct LogEntry {
-  double inv_c, ln_c;
-};
-const std::array<LogEntry, 128> kLogTable = [] {
-  std::array<LogEntry, 128> t{};
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double c = 1.0 + (static_cast<double>(i) + 0.5) / 128.0;
-    t[i] = {1.0 / c, std::log(c)};
-  }
-  return t;
-}();
-
-double log_unit(double u) {
-  const auto bits = std::bit_cast<std::uint64_t>(u);
-  const int e = static_cast<int>(bits >> 52) - 1023;  // u > 0: no sign bit; u >= 2^-53: normal
-  const double f = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
-  const LogEntry& entry = kLogTable[(bits >> 45) & 127u];
-  const double r = f * entry.inv_c - 1.0;
-  const double r2 = r * r;
-  const double series = r - r2 * (0.5 - r * (1.0 / 3.0)) - r2 * r2 * 0.25;
-  return e * std::numbers::ln2 + entry.ln_c + series;
-}
-
-// The bracket's error budget (the library's log and cos are within 1 ulp): ln u above within
-// 2e-13 + 1e-14, so -2 ln u within 5e-13: taken as 5e-11; cos within 5e-7 + 3e-15: taken as 1e-5.
-constexpr double kRadius2Error = 5e-11;
-constexpr double kCosError = 1e-5;
-
-}  // namespace
-
-GaussianBracket gaussian_bracket(std::uint64_t key, std::uint64_t tick) {
-  const std::uint64_t a = mix(key ^ tick);
-  const std::uint64_t b = mix(a ^ 0xD1B54A32D192ED03ull);
-  // gaussian_at is fl(fl(sqrt(-2 ln u)) fl(cos(2 pi t))): sqrt and the product round
-  // monotonically, so bounds on -2 ln u and on the cosine bound it through the corners
-  const double r2 = -2.0 * log_unit(unit(a));
-  const double r_lo = std::sqrt(std::max(0.0, r2 - kRadius2Error));
-  const double r_hi = std::sqrt(r2 + kRadius2Error);
-  const double c = cos_turns(unit(b));
-  const double c_lo = c - kCosError, c_hi = c + kCosError;
-  return {std::min(r_lo * c_lo, r_hi * c_lo), std::max(r_lo * c_hi, r_hi * c_hi)};
 }
 
 }  // namespace palp::plant

@@ -243,7 +243,7 @@ std::uint16_t Plant::current_sense_code() const {
                                s.current_sense_full_scale_A, s.current_sense_bits);
   };
   if (!(s.current_sense_noise_A > 0.0)) return code_of(0.0);
-  return quantised_noise(current_noise_key_, tick_, code_of);
+  return code_of(gaussian_at(current_noise_key_, tick_));
 }
 
 std::int32_t Plant::encoder_count() const {
@@ -253,7 +253,7 @@ std::int32_t Plant::encoder_count() const {
     return static_cast<std::int32_t>(std::clamp(counts, -2147483648.0, 2147483647.0));
   };
   if (!(s.encoder_noise_m > 0.0)) return count_of(0.0);
-  return quantised_noise(encoder_noise_key_, tick_, count_of);
+  return count_of(gaussian_at(encoder_noise_key_, tick_));
 }
 
 double Plant::channel_pressure_Pa(int channel) const {
@@ -278,22 +278,15 @@ std::array<std::uint16_t, kPressureChannels> Plant::pressure_adcs() const {
     for (std::size_t k = 0; k < kPressureChannels; ++k) codes[k] = pressure_code_at(p[k], 0.0);
     return codes;
   }
-  // the six channels' noise first, then their codes: independent work the CPU overlaps
-  std::array<GaussianBracket, kPressureChannels> g;
   for (std::size_t k = 0; k < kPressureChannels; ++k)
-    g[k] = gaussian_bracket(pressure_noise_keys_[k], tick_);
-  for (std::size_t k = 0; k < kPressureChannels; ++k) {
-    codes[k] = quantised_noise(g[k], pressure_noise_keys_[k], tick_,
-                               [&](double x) { return pressure_code_at(p[k], x); });
-  }
+    codes[k] = pressure_code_at(p[k], gaussian_at(pressure_noise_keys_[k], tick_));
   return codes;
 }
 
 std::uint16_t Plant::pressure_code(int channel, double pressure_Pa) const {
-  auto code_of = [&](double g) { return pressure_code_at(pressure_Pa, g); };
-  if (!(config_.sensors.pressure_noise_Pa > 0.0)) return code_of(0.0);
-  return quantised_noise(pressure_noise_keys_[static_cast<std::size_t>(channel - 1)], tick_,
-                         code_of);
+  if (!(config_.sensors.pressure_noise_Pa > 0.0)) return pressure_code_at(pressure_Pa, 0.0);
+  return pressure_code_at(pressure_Pa,
+                          gaussian_at(pressure_noise_keys_[static_cast<std::size_t>(channel - 1)], tick_));
 }
 
 std::uint16_t Plant::pressure_code_at(double pressure_Pa, double g) const {
