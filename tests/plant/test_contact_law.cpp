@@ -2,7 +2,9 @@
 // spring; values against closed forms and against analysis-notes' worked numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "palp/plant/contact.hpp"
 #include "plant_test_util.hpp"
@@ -68,6 +70,35 @@ TEST(Sneddon, TangentIsTwoEStarAAndMatchesTheDerivative) {
     EXPECT_NEAR(p.stiffness_N_per_m, num, 1e-5 * p.stiffness_N_per_m) << d;
     EXPECT_NEAR(p.stiffness_N_per_m, 2.0 * 2e5 * sneddon_contact_radius(kR, d), 1e-9);
   }
+}
+
+// The plant's Sneddon law comes from a table (sneddon_sphere_tabulated): against the exact law,
+// solved by Newton, at 400 depths in each of the table's 512 cells and log-spaced down to
+// 1e-10 R, force and stiffness agree to kSneddonTableError relative; beyond the table it is the
+// exact law itself.
+TEST(Sneddon, TabulatedLawIsTheExactLawWithinItsStatedErrorOverTheWholeTable) {
+  double worst_force = 0.0, worst_stiffness = 0.0, worst_at = 0.0;
+  auto compare = [&](double d) {
+    const ElasticPoint exact = sneddon_sphere(1e6, kR, d * kR);
+    const ElasticPoint table = sneddon_sphere_tabulated(1e6, kR, d * kR);
+    const double ef = std::abs(table.force_N / exact.force_N - 1.0);
+    const double ek = std::abs(table.stiffness_N_per_m / exact.stiffness_N_per_m - 1.0);
+    if (std::max(ef, ek) > std::max(worst_force, worst_stiffness)) worst_at = d;
+    worst_force = std::max(worst_force, ef);
+    worst_stiffness = std::max(worst_stiffness, ek);
+  };
+  const int n = 512 * 400;
+  for (int k = 1; k < n; ++k) compare(kSneddonTableMaxDepth * (k + 0.37) / n);
+  for (double d = 1e-10; d < 0.01; d *= 1.01) compare(d);
+  std::printf("Sneddon table: max relative error %.2e (force), %.2e (stiffness), worst at "
+              "depth / R = %.4f\n", worst_force, worst_stiffness, worst_at);
+  EXPECT_LT(worst_force, kSneddonTableError);
+  EXPECT_LT(worst_stiffness, kSneddonTableError);
+  for (const double d : {kSneddonTableMaxDepth, 5.0, 8.0}) {
+    EXPECT_EQ(sneddon_sphere_tabulated(1e6, kR, d * kR).force_N, sneddon_sphere(1e6, kR, d * kR).force_N);
+  }
+  EXPECT_EQ(sneddon_sphere_tabulated(1e6, kR, 0.0).force_N, 0.0);
+  EXPECT_EQ(sneddon_sphere_tabulated(1e6, kR, -1e-3).stiffness_N_per_m, 0.0);
 }
 
 TEST(Sneddon, ShallowLimitIsHertz) {

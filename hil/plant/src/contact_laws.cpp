@@ -73,12 +73,11 @@ double bottom_effect_factor_slope(double chi) {
   return 1.133 + chi * (2.566 + chi * (2.307 + chi * 0.39));
 }
 
-ElasticPoint sphere_on_layer(const ContactParams& params, double radius_m, double depth_m,
-                             double* hint_u) {
+ElasticPoint sphere_on_layer(const ContactParams& params, double radius_m, double depth_m) {
   if (!(depth_m > 0.0)) return {};
   ElasticPoint p = params.law == ContactLaw::hertz
                        ? hertz_sphere(params.e_star_Pa, radius_m, depth_m)
-                       : sneddon_sphere(params.e_star_Pa, radius_m, depth_m, hint_u);
+                       : sneddon_sphere_tabulated(params.e_star_Pa, radius_m, depth_m);
   const double h = params.layer_thickness_m;
   if (h > 0.0) {
     const double chi = std::sqrt(radius_m * depth_m) / h;
@@ -92,7 +91,7 @@ ElasticPoint sphere_on_layer(const ContactParams& params, double radius_m, doubl
 }
 
 ElasticPoint elastic_contact(const ContactParams& params, double radius_m, double depth_m,
-                             double* hint_contact_depth, double* hint_u) {
+                             double* hint_contact_depth) {
   if (!(depth_m > 0.0)) {
     if (hint_contact_depth) *hint_contact_depth = 0.0;
     return {};
@@ -100,7 +99,7 @@ ElasticPoint elastic_contact(const ContactParams& params, double radius_m, doubl
   const double c = params.structural_compliance_m_per_N;
   if (!(c > 0.0)) {
     if (hint_contact_depth) *hint_contact_depth = depth_m;
-    return sphere_on_layer(params, radius_m, depth_m, hint_u);
+    return sphere_on_layer(params, radius_m, depth_m);
   }
   // g(x) = x + c F(x) - delta: increasing and convex, so Newton converges from any start in
   // [0, delta] (a start left of the root jumps right of it, then descends monotonically).
@@ -108,7 +107,7 @@ ElasticPoint elastic_contact(const ContactParams& params, double radius_m, doubl
   if (hint_contact_depth && *hint_contact_depth > 0.0) x = std::min(*hint_contact_depth, depth_m);
   ElasticPoint p{};
   for (int iter = 0; iter < 100; ++iter) {
-    p = sphere_on_layer(params, radius_m, x, hint_u);
+    p = sphere_on_layer(params, radius_m, x);
     const double g = x + c * p.force_N - depth_m;
     const double dx = g / (1.0 + c * p.stiffness_N_per_m);
     if (std::abs(dx) <= 1e-13 * depth_m) break;

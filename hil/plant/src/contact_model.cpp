@@ -10,7 +10,6 @@ void ContactModel::reset() {
   q_N_ = 0.0;
   last_elastic_N_ = 0.0;
   hint_depth_ = 0.0;
-  hint_u_ = -1.0;
 }
 
 ContactModel::Output ContactModel::evaluate(const ContactParams& params, double radius_m,
@@ -19,7 +18,7 @@ ContactModel::Output ContactModel::evaluate(const ContactParams& params, double 
   Output out;
   const bool touching = depth_m > 0.0;
   if (touching) {
-    const ElasticPoint el = elastic_contact(params, radius_m, depth_m, &hint_depth_, &hint_u_);
+    const ElasticPoint el = elastic_contact(params, radius_m, depth_m, &hint_depth_);
     out.elastic_force_N = el.force_N;
     out.stiffness_N_per_m = el.stiffness_N_per_m;
   } else {

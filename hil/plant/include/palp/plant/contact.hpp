@@ -1,6 +1,6 @@
 // Contact of the spherical tip with a phantom (README.md "Contact"):
 //
-//   elastic part   sphere on a bonded layer (Hertz or exact Sneddon sphere, times the
+//   elastic part   sphere on a bonded layer (Hertz or exact Sneddon sphere, tabulated, times the
 //                  Dimitriadis finite-thickness factor), in series with a linear structural
 //                  spring (a void or a channel under the site): depth delta = delta_c + c_s F;
 //   viscous part   Kelvin-Voigt with retardation time tau: F_v = tau * k_t(delta) * d(delta)/dt
@@ -56,19 +56,27 @@ double sneddon_contact_radius(double radius_m, double depth_m, double hint_u = -
 ElasticPoint sneddon_sphere(double e_star_Pa, double radius_m, double depth_m,
                             double* hint_u = nullptr);
 
+/// The Sneddon sphere as the plant evaluates it, from a table of the law's smooth factors (512
+/// cubic cells over depth / radius in [0, kSneddonTableMaxDepth], README.md "Speed and
+/// sameness"): force and stiffness within kSneddonTableError relative of sneddon_sphere(), for
+/// a few tens of instructions instead of two Newton solves; deeper than the table, sneddon_sphere().
+inline constexpr double kSneddonTableMaxDepth = 4.0;  ///< depth / radius (10 mm at R = 2.5 mm)
+inline constexpr double kSneddonTableError = 1e-11;   ///< relative, force and stiffness
+ElasticPoint sneddon_sphere_tabulated(double e_star_Pa, double radius_m, double depth_m);
+
 /// Dimitriadis et al. (2002) bonded-layer factor for nu = 0.5, chi = sqrt(R delta)/h:
 /// 1 + 1.133 chi + 1.283 chi^2 + 0.769 chi^3 + 0.0975 chi^4 (and its derivative).
 double bottom_effect_factor(double chi);
 double bottom_effect_factor_slope(double chi);
 
-/// The sphere law of `params` (without the series spring) at contact depth delta_c.
-ElasticPoint sphere_on_layer(const ContactParams& params, double radius_m, double depth_m,
-                             double* hint_u = nullptr);
+/// The sphere law of `params` (without the series spring) at contact depth delta_c (Sneddon:
+/// sneddon_sphere_tabulated).
+ElasticPoint sphere_on_layer(const ContactParams& params, double radius_m, double depth_m);
 
 /// The whole elastic (relaxed) law at total depth delta, series spring included: solves
 /// delta_c + c_s F(delta_c) = delta by Newton from hint_contact_depth (updated).
 ElasticPoint elastic_contact(const ContactParams& params, double radius_m, double depth_m,
-                             double* hint_contact_depth = nullptr, double* hint_u = nullptr);
+                             double* hint_contact_depth = nullptr);
 
 /// Per-step contact state: relaxation memory and warm starts. evaluate() is called once per
 /// step; it never allocates.
@@ -99,7 +107,6 @@ class ContactModel {
   double q_N_ = 0.0;             // standard-linear-solid extra force
   double last_elastic_N_ = 0.0;  // F_el at the previous call
   double hint_depth_ = 0.0;      // warm start of the series solve
-  double hint_u_ = -1.0;         // warm start of the Sneddon solve
   double cached_dt_ = -1.0, cached_tau_ = -1.0, decay_ = 0.0, gain_ = 0.0;
 };
 
