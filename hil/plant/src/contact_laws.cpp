@@ -105,12 +105,21 @@ ElasticPoint elastic_contact(const ContactParams& params, double radius_m, doubl
   // [0, delta] (a start left of the root jumps right of it, then descends monotonically).
   double x = depth_m;
   if (hint_contact_depth && *hint_contact_depth > 0.0) x = std::min(*hint_contact_depth, depth_m);
+  // A step below kLastStep delta is the last: taken along the tangent (force F - k dx), it leaves
+  // the force within F'' dx^2 / 2 (relative ~1e-16) of the law's at the new x and the tangent
+  // within k' dx (relative below kLastStep / 2 for a sphere, k ~ sqrt(delta)) of it, one
+  // evaluation sooner than stepping on until a step vanishes.
+  constexpr double kLastStep = 1e-8;
   ElasticPoint p{};
   for (int iter = 0; iter < 100; ++iter) {
     p = sphere_on_layer(params, radius_m, x);
     const double g = x + c * p.force_N - depth_m;
     const double dx = g / (1.0 + c * p.stiffness_N_per_m);
-    if (std::abs(dx) <= 1e-13 * depth_m) break;
+    if (std::abs(dx) <= kLastStep * depth_m) {
+      p.force_N -= p.stiffness_N_per_m * dx;
+      x = std::clamp(x - dx, 0.0, depth_m);
+      break;
+    }
     x = std::clamp(x - dx, 0.0, depth_m);
   }
   if (hint_contact_depth) *hint_contact_depth = x;

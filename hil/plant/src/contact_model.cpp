@@ -10,6 +10,8 @@ void ContactModel::reset() {
   q_N_ = 0.0;
   last_elastic_N_ = 0.0;
   hint_depth_ = 0.0;
+  last_depth_m_ = 0.0;
+  last_stiffness_N_per_m_ = 0.0;
 }
 
 ContactModel::Output ContactModel::evaluate(const ContactParams& params, double radius_m,
@@ -18,7 +20,15 @@ ContactModel::Output ContactModel::evaluate(const ContactParams& params, double 
   Output out;
   const bool touching = depth_m > 0.0;
   if (touching) {
+    // the series solve starts from last step's answer moved along its tangent:
+    // d(delta_c)/d(delta) = 1 / (1 + c_s k) = 1 - c_s k_t (one Newton step, for free)
+    if (hint_depth_ > 0.0) {
+      hint_depth_ += (depth_m - last_depth_m_) *
+                     (1.0 - params.structural_compliance_m_per_N * last_stiffness_N_per_m_);
+    }
     const ElasticPoint el = elastic_contact(params, radius_m, depth_m, &hint_depth_);
+    last_depth_m_ = depth_m;
+    last_stiffness_N_per_m_ = el.stiffness_N_per_m;
     out.elastic_force_N = el.force_N;
     out.stiffness_N_per_m = el.stiffness_N_per_m;
   } else {

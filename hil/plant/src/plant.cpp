@@ -161,7 +161,7 @@ void Plant::step(double dt_s, double v_coil_V) {
 
   // Electrics: exact solution of L di/dt = v - R i - K_f ds/dt with the speed held over the tick;
   // the mechanics uses the tick's mean current, so the coil's impulse is exact.
-  const double kf0 = kf_.at(s_m_);
+  const double kf0 = s_m_ == kf_cached_s_m_ ? kf_cached_ : kf_.at(s_m_);
   const double i_inf = (v - kf0 * v_m_per_s_) / c.resistance_ohm;
   const double i_new = i_inf + (current_A_ - i_inf) * elec_decay_;
   const double i_mean = i_inf + (current_A_ - i_inf) * elec_mean_;
@@ -205,7 +205,9 @@ void Plant::step(double dt_s, double v_coil_V) {
   // explicit first half this is the trapezoidal rule for the damping (second order, A-stable);
   // springs and contact stay explicit (stable for omega dt < 2; here omega dt < 0.02).
   const double mass = m.moving_mass_kg + contact_.mass_kg;
-  const double f_other = other_force(s, kf_.at(s));
+  kf_cached_s_m_ = s;
+  kf_cached_ = kf_.at(s);
+  const double f_other = other_force(s, kf_cached_);
   double vel_end = (vel + half * f_other / mass) / (1.0 + half * m.damping_N_s_per_m / mass);
   if (contact_.touching) {
     const double cd = contact_.damping_N_s_per_m;

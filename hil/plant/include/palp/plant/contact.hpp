@@ -106,7 +106,8 @@ class ContactModel {
  private:
   double q_N_ = 0.0;             // standard-linear-solid extra force
   double last_elastic_N_ = 0.0;  // F_el at the previous call
-  double hint_depth_ = 0.0;      // warm start of the series solve
+  double hint_depth_ = 0.0;      // warm start of the series solve (its last contact depth)
+  double last_depth_m_ = 0.0, last_stiffness_N_per_m_ = 0.0;  // its last depth and tangent
   double cached_dt_ = -1.0, cached_tau_ = -1.0, decay_ = 0.0, gain_ = 0.0;
 };
 

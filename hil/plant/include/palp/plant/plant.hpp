@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "palp/plant/config.hpp"
@@ -108,6 +109,8 @@ class Plant {
 
   PlantConfig config_;
   ForceConstantTable kf_;
+  // K_f at the end of the last step (the next step starts where it ended): {s, K_f(s)}
+  double kf_cached_s_m_ = std::numeric_limits<double>::quiet_NaN(), kf_cached_ = 0.0;
   std::shared_ptr<const Phantom> phantom_;
   double spring_neutral_m_ = 0.0;
 
