@@ -18,10 +18,14 @@ constexpr double kTurn = 4294967296.0;
 
 double exact_sin(std::uint32_t phase) { return std::sin(kTwoPi * (phase / kTurn)); }
 
-TEST(WaveformSine, TableHoldsSinOfEverySampleToFloatRounding) {
-  for (std::uint32_t k = 0; k <= kSineTableSize; ++k) {
+TEST(WaveformSine, TableHoldsSinOfEverySampleAndTheSlopeToTheNextToFloatRounding) {
+  const double per_fraction = std::ldexp(1.0, -static_cast<int>(detail::kFractionBits));
+  for (std::uint32_t k = 0; k < kSineTableSize; ++k) {
     const double exact = std::sin(kTwoPi * k / kSineTableSize);
-    EXPECT_NEAR(detail::kSineTable[k], exact, 3.0e-8) << k;
+    const double next = std::sin(kTwoPi * (k + 1) / kSineTableSize);
+    EXPECT_NEAR(detail::kSineTable[k].value, exact, 3.0e-8) << k;
+    EXPECT_NEAR(detail::kSineTable[k].slope, (next - exact) * per_fraction, 1e-9 * per_fraction)
+        << k;
   }
 }
 

@@ -43,21 +43,25 @@ constexpr double sin_of_index(std::uint32_t k) {
   }
 }
 
-constexpr std::array<float, kSineTableSize + 1> make_sine_table() {
-  std::array<float, kSineTableSize + 1> t{};
-  for (std::uint32_t k = 0; k <= kSineTableSize; ++k) t[k] = static_cast<float>(sin_of_index(k));
+constexpr std::array<detail::SineSample, kSineTableSize> make_sine_table() {
+  std::array<detail::SineSample, kSineTableSize> t{};
+  constexpr double kPerFraction = 1.0 / static_cast<double>(1u << detail::kFractionBits);
+  for (std::uint32_t k = 0; k < kSineTableSize; ++k) {
+    const double here = sin_of_index(k), next = sin_of_index(k + 1);
+    t[k] = {static_cast<float>(here), static_cast<float>((next - here) * kPerFraction)};
+  }
   return t;
 }
 
-constexpr std::array<float, kSineTableSize + 1> kValues = make_sine_table();
-static_assert(kValues[0] == 0.0f && kValues[kSineTableSize / 4] == 1.0f &&
-              kValues[kSineTableSize / 2] == 0.0f && kValues[3 * kSineTableSize / 4] == -1.0f &&
-              kValues[kSineTableSize] == 0.0f);
+constexpr std::array<detail::SineSample, kSineTableSize> kValues = make_sine_table();
+static_assert(kValues[0].value == 0.0f && kValues[kSineTableSize / 4].value == 1.0f &&
+              kValues[kSineTableSize / 2].value == 0.0f &&
+              kValues[3 * kSineTableSize / 4].value == -1.0f);
 
 }  // namespace
 
 namespace detail {
-constinit const std::array<float, kSineTableSize + 1> kSineTable = kValues;
+constinit const std::array<SineSample, kSineTableSize> kSineTable = kValues;
 }  // namespace detail
 
 }  // namespace palp::fw

@@ -15,10 +15,10 @@
 // exactly 50 per tick at 20 kHz, 25 at 40 kHz). The worst case is therefore fixed by K alone,
 // whatever the phases.
 //
-// Cost (arm-none-eabi-g++ 12 -O2, counted under QEMU -icount): 18 instructions per line (a
-// phase multiply-add, two table loads, one convert, two FPU multiply-adds) plus ~60 per tick;
-// ProgramRunner::step() with 400 lines is ~1000 instructions at 20 kHz (50 lines) and ~560 at
-// 40 kHz (25 lines), with 90 lines ~330. On the STM32G474 count ~1.3-1.5 cycles per instruction
+// Cost (arm-none-eabi-g++ 12 -O2, counted under QEMU -icount): 16 instructions per line (a
+// phase add, one table sample's value and slope, one convert, one FPU multiply-add, the sum)
+// plus ~60 per tick; ProgramRunner::step() with 400 lines is ~900 instructions at 20 kHz (50
+// lines) and ~500 at 40 kHz (25 lines), with 90 lines ~300. On the STM32G474 count ~1.3-1.5 cycles per instruction
 // from zero-wait RAM, so about 1300-1500 of the 4250-cycle budget at 20 kHz. The table is const
 // data (flash): for cache-independent timing a board can place the symbol
 // palp::fw::detail::kSineTable (section .rodata._ZN4palp2fw6detail10kSineTableE with
