@@ -3,6 +3,7 @@
 #include "palp/plant/noise.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -91,20 +92,10 @@ double tail_beyond_r(std::uint64_t word) {
   }
 }
 
-}  // namespace
-
-std::uint64_t noise_key(std::uint64_t seed, std::uint32_t stream) {
-  return mix(mix(seed) ^ (static_cast<std::uint64_t>(stream) << 32));
-}
-
-double ziggurat_tail_start() { return kZig.r; }
-
-// One 64-bit word per draw: bits 0-7 pick the layer, bit 8 the sign, bits 11-63 the uniform
-// position u in [0, 1) along the layer (disjoint bits, so the three are independent). Inside
-// the layer's core (u x[k] < x[k + 1]; 98.5 % of draws) the deviate is u x[k], one multiply;
-// otherwise the wedge test against f or the tail, with words derived from this one.
-double gaussian_at(std::uint64_t key, std::uint64_t tick) {
-  std::uint64_t word = mix(key ^ tick);
+// The draws outside a layer's core (1.5 %): the wedge test against f or the tail, with words
+// derived from this one, and a new word when the point is rejected. Out of line, so that the
+// common path needs no registers saved.
+[[gnu::noinline]] double gaussian_outside_core(std::uint64_t word) {
   for (;;) {
     const auto k = static_cast<std::size_t>(word & 0xFFu);
     const double sign = (word & 0x100u) ? -1.0 : 1.0;
@@ -115,6 +106,26 @@ double gaussian_at(std::uint64_t key, std::uint64_t tick) {
     if (y < density(z)) return sign * z;
     word = mix(word ^ kRetrySalt);
   }
+}
+
+}  // namespace
+
+std::uint64_t noise_key(std::uint64_t seed, std::uint32_t stream) {
+  return mix(mix(seed) ^ (static_cast<std::uint64_t>(stream) << 32));
+}
+
+double ziggurat_tail_start() { return kZig.r; }
+
+// One 64-bit word per draw: bits 0-7 pick the layer, bit 8 the sign, bits 11-63 the uniform
+// position u in [0, 1) along the layer (disjoint bits, so the three are independent). Inside
+// the layer's core (u x[k] < x[k + 1]; 98.5 % of draws) the deviate is u x[k], one multiply,
+// its sign bit set from bit 8 (no branch on a coin flip).
+double gaussian_at(std::uint64_t key, std::uint64_t tick) {
+  const std::uint64_t word = mix(key ^ tick);
+  const auto k = static_cast<std::size_t>(word & 0xFFu);
+  const double z = static_cast<double>(word >> 11) * kZig.scale[k];
+  if (z < kZig.x[k + 1]) return std::bit_cast<double>(std::bit_cast<std::uint64_t>(z) ^ ((word & 0x100u) << 55));
+  return gaussian_outside_core(word);
 }
 
 }  // namespace palp::plant
