@@ -38,6 +38,23 @@ TEST(Crc32, IncrementalEqualsOneShot) {
   EXPECT_EQ(crc32_final(s), crc32(data.data(), data.size()));
 }
 
+// The host's slicing-by-8 and the firmware's byte-wise table give the same CRC for every length
+// (the whole words and the byte tail) and every start state.
+TEST(Crc32, SlicingByEightEqualsTheBytewiseTableForEveryLength) {
+  std::mt19937 rng(5);
+  std::vector<u8> data(300);
+  for (u8& b : data) b = static_cast<u8>(rng());
+  for (std::size_t n = 0; n <= data.size(); ++n) {
+    for (const u32 start : {kCrc32Init, 0u, 0x12345678u}) {
+      ASSERT_EQ(crc32_update_sliced(start, data.data(), n),
+                crc32_update_bytewise(start, data.data(), n))
+          << "length " << n;
+    }
+  }
+  constexpr u8 kCheck[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  static_assert(crc32_final(crc32_update_sliced(kCrc32Init, kCheck, 9)) == 0xCBF43926u);
+}
+
 // The examples of Cheshire & Baker's COBS paper as listed by common references.
 TEST(Cobs, EncodesTheReferenceExamples) {
   EXPECT_EQ(encode({0x00}), (std::vector<u8>{0x01, 0x01}));
