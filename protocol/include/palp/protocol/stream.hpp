@@ -3,6 +3,7 @@
 // sample holds the channels whose bits are set, in bit order, little-endian, no padding.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 
 #include "palp/protocol/cobs.hpp"
@@ -30,12 +31,11 @@ struct RawSample {
 
 /// Size in bytes of one sample carrying the channels in mask (bits above Channel::v_cmd ignored).
 constexpr std::size_t bytes_per_sample(u16 mask) {
-  std::size_t n = 0;
-  for (u8 bit = 0; bit <= static_cast<u8>(Channel::v_cmd); ++bit) {
-    if ((mask & (1u << bit)) == 0) continue;
-    n += (bit == static_cast<u8>(Channel::encoder)) ? 4 : 2;
-  }
-  return n;
+  // two bytes a channel, four for the encoder (the known channels are bits 0..v_cmd: kAllChannels)
+  static_assert(kAllChannels == (2u << static_cast<u8>(Channel::v_cmd)) - 1u);
+  const unsigned known = mask & kAllChannels;
+  return 2u * static_cast<std::size_t>(std::popcount(known)) +
+         ((known >> static_cast<u8>(Channel::encoder)) & 1u) * 2u;
 }
 
 /// What is wrong with a SampleBatch, if anything (a receiver checks every batch before use).

@@ -117,6 +117,14 @@ class Writer {
     std::memcpy(data_ + size_, src, n);
     size_ += n;
   }
+  /// Room for n more bytes, for the caller to fill: where they start, or nullptr (and the writer
+  /// has failed) when they do not fit.
+  constexpr u8* claim(std::size_t n) {
+    if (!reserve(n)) return nullptr;
+    u8* p = data_ + size_;
+    size_ += n;
+    return p;
+  }
   constexpr std::size_t size() const { return size_; }
   constexpr bool ok() const { return ok_; }
 
