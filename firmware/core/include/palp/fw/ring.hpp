@@ -2,6 +2,7 @@
 // For the ISR-to-thread hand-off use spsc_queue.hpp instead.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -32,8 +33,8 @@ class Ring {
     if (n > N - size_) return false;
     const std::size_t tail = (head_ + size_) & (N - 1);
     const std::size_t first = n < N - tail ? n : N - tail;  // up to the end of the storage
-    for (std::size_t k = 0; k < first; ++k) items_[tail + k] = v[k];
-    for (std::size_t k = first; k < n; ++k) items_[k - first] = v[k];
+    std::copy_n(v, first, items_.data() + tail);  // memmove for trivially copyable T
+    std::copy_n(v + first, n - first, items_.data());
     size_ += n;
     return true;
   }
@@ -41,8 +42,8 @@ class Ring {
   std::size_t pop_n(T* out, std::size_t max) {
     const std::size_t n = max < size_ ? max : size_;
     const std::size_t first = n < N - head_ ? n : N - head_;
-    for (std::size_t k = 0; k < first; ++k) out[k] = items_[head_ + k];
-    for (std::size_t k = first; k < n; ++k) out[k] = items_[k - first];
+    std::copy_n(items_.data() + head_, first, out);
+    std::copy_n(items_.data(), n - first, out + first);
     head_ = (head_ + n) & (N - 1);
     size_ -= n;
     return n;
