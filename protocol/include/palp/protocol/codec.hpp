@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <type_traits>
 
 #include "palp/protocol/messages.hpp"
 #include "palp/protocol/reject.hpp"
@@ -24,7 +25,12 @@ void put(Writer& w, const T& value) {
     w.bytes(value.bytes.data(), value.bytes.size());
   } else if constexpr (requires { value.items; }) {
     w.scalar(value.size);
-    for (u16 k = 0; k < value.size && k < value.items.size(); ++k) put(w, value.items[k]);
+    const std::size_t n = value.size < value.items.size() ? value.size : value.items.size();
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value.items[0])>, u8>) {
+      w.bytes(value.items.data(), n);  // bytes are their own encoding: one copy
+    } else {
+      for (std::size_t k = 0; k < n; ++k) put(w, value.items[k]);
+    }
   } else {
     for (const auto& x : value) put(w, x);
   }
@@ -41,9 +47,13 @@ Reject get(Reader& r, T& value) {
     if (!r.scalar(n)) return Reject::short_payload;
     if (n > value.items.size()) return Reject::bad_field;
     value.size = n;
-    for (u16 k = 0; k < n; ++k)
-      if (Reject e = get(r, value.items[k]); e != Reject::ok) return e;
-    return Reject::ok;
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value.items[0])>, u8>) {
+      return r.bytes(value.items.data(), n) ? Reject::ok : Reject::short_payload;
+    } else {
+      for (u16 k = 0; k < n; ++k)
+        if (Reject e = get(r, value.items[k]); e != Reject::ok) return e;
+      return Reject::ok;
+    }
   } else {
     for (auto& x : value)
       if (Reject e = get(r, x); e != Reject::ok) return e;
