@@ -1,12 +1,15 @@
-// palp-sim's results pinned bit for bit (issue 16): the speed work on the simulation, the plant
-// and the firmware core must not change what a run produces for a seed. Each scenario is the
-// bench_sim one (tests/bench/bench_sim.cpp): a 400-line multisine about a 1.0 A bias with the
-// probe driven from its rear stop into contact, the full stream on (all channels, 10 kHz).
-// Two FNV-1a fingerprints: of every device byte the host would receive (recorded with the code
-// before the speed work, fd26a07, and unchanged by it), and of the plant's true state (position,
-// speed, current, contact force, as IEEE bits) after every millisecond. The state moved once, by
-// roundoff: the Sneddon law's atanh is taken from log for u >= 0.1 (hil/plant/README.md,
-// "Speed and sameness"), a few 1e-16 relative, which changed no device byte.
+// palp-sim's results pinned bit for bit (issue 16): a change to the simulation, the plant or the
+// firmware core must not change what a run produces for a seed unless it says so. Each scenario
+// is the bench_sim one (tests/bench/bench_sim.cpp): a 400-line multisine about a 1.0 A bias with
+// the probe driven from its rear stop into contact, the full stream on (all channels, 10 kHz).
+// Two FNV-1a fingerprints: of every device byte the host would receive, and of the plant's true
+// state (position, speed, current, contact force, as IEEE bits) after every millisecond.
+// History (hil/plant/README.md, "Speed and sameness"): phase 1 kept the device bytes of fd26a07
+// and moved the state by roundoff (Sneddon's atanh from log). Phase 2 re-pinned both: the sensor
+// noise comes from a ziggurat (other samples, same statistics: every byte moves), the Sneddon
+// law from a table (1e-12 relative: the state only), the series-spring solve ends one
+// evaluation sooner (roundoff: pad state only), sin_turns from (value, slope) pairs (float
+// roundoff of the set-points: bytes and state).
 //
 // When a change is meant to alter the physics or the firmware's output, these hashes change
 // with it: record the new ones and say in the commit why the results moved. They hold for
