@@ -19,6 +19,7 @@
 #include "palp/indent.hpp"
 #include "palp/probe.hpp"
 #include "palp/sim_inproc.hpp"
+#include "sim_process.hpp"
 
 namespace {
 
@@ -26,6 +27,7 @@ using palp::IndentationPreset;
 using palp::IndentationRun;
 using palp::IndentationSettings;
 using palp::sim::InprocSimulator;
+using palp::sim::test::SimProcess;
 using testing::HasSubstr;
 using namespace std::chrono_literals;
 
@@ -156,8 +158,13 @@ TEST(Indent, ACoilLeftFloatingByAContactWatchIsReleasedThenZeroedAndFloatedAgain
 }
 
 TEST(Indent, CancelledMidRampStopsTheRampKeepsWhatWasRecordedAndLeavesZeroCurrent) {
-  InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
-  palp::Probe probe(sim.transport());
+  // palp-sim paced at 20x, not in process: progress (which cancels) is reported every 200 ms
+  // of wall time, over 50 s of the ramp unpaced (at over 200x); the in-process simulator cannot
+  // be paced
+  SimProcess sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"}, false);
+  ASSERT_TRUE(sim.ok());
+  ASSERT_EQ(sim.control("pace 20"), "ok");
+  palp::Probe probe(sim.uri());
   IndentationSettings s = IndentationSettings::preset(IndentationPreset::one_d);
   s.stream_rate_Hz = 200;
   double fraction = 0;
