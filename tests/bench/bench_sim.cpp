@@ -11,19 +11,11 @@
 #include <memory>
 #include <string>
 
-#include "palp/sim/plant_link.hpp"
-#include "palp/sim/simulation.hpp"
+#include "multisine_scenario.hpp"
 
 namespace {
 
 using namespace palp;
-
-template <class M>
-void send(sim::Simulation& s, const M& m, proto::u16 seq, std::uint64_t wall_us = 0) {
-  std::vector<proto::u8> w(proto::kMaxWireFrame);
-  w.resize(proto::encode_message(m, seq, 0, w.data(), w.size()));
-  s.host_bytes(w.data(), w.size(), wall_us);
-}
 
 struct Site {
   const char* phantom;
@@ -34,33 +26,16 @@ constexpr Site kSites[] = {{"solid_1d", 0.027, 0.0}, {"pad_2d", 0.080, 0.075}};
 void BM_SimulationTick(benchmark::State& state) {
   const auto rate_Hz = static_cast<std::uint32_t>(state.range(0));
   const Site& site = kSites[state.range(1)];
-  fw::DeviceIdentity id;
-  id.board = "palp-sim";
-  sim::Simulation s(id, std::make_unique<sim::ModelPlant>(site.phantom, 1));
+  const auto sim = sim::test::make_scenario_simulation(site.phantom, site.x_m, site.y_m, 1);
+  sim::Simulation& s = *sim;
   auto& plant = static_cast<sim::ModelPlant&>(s.plant()).model();
-  // the coil floats 25 mm out at 0.5 A: the tip meets the surface there, and the bias presses in
-  plant.set_mount(site.x_m, site.y_m, plant.phantom()->surface_z_m(site.x_m, site.y_m) - 0.025);
-  proto::SetParams p;
-  p.control_rate_Hz = rate_Hz;
-  send(s, p, 1);
-  send(s, proto::StreamConfigure{proto::kAllChannels, static_cast<proto::u16>(rate_Hz / 10000), 40}, 2);
-  send(s, proto::StreamStart{}, 3);
-  proto::LoadMultisine m;
-  m.line_first = 1;
-  m.line_last = 400;
-  m.line_step = 1;
-  m.fundamental_Hz = 0.25f;
-  m.line_amplitude_A = 0.0005f;
-  m.offset_A = 1.0f;
-  m.periods = 0;
-  send(s, m, 4);
-  send(s, proto::ProgramStart{}, 5);
+  sim::test::start_multisine_scenario(s, rate_Hz);
   std::uint64_t wall = 0;
   // 1 ms of virtual time per step, with a heartbeat so the watchdog stays fed
   auto run_ms = [&] {
     const std::uint32_t ran = s.run(rate_Hz / 1000, wall);
     wall += 1000;
-    send(s, proto::Heartbeat{}, 6, wall);
+    sim::test::send_frame(s, proto::Heartbeat{}, 6, wall);
     benchmark::DoNotOptimize(s.take_device_bytes());
     return ran;
   };

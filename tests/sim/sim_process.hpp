@@ -19,6 +19,7 @@
 #include "palp/protocol/frame.hpp"
 #include "palp/protocol/schema.hpp"
 #include "palp/protocol/stream.hpp"
+#include "loopback.hpp"
 #include "sanitized.hpp"
 
 namespace palp::sim::test {
@@ -165,18 +166,7 @@ class SimProcess {
   }
 
  private:
-  static int connect_to(std::uint16_t port) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(port);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-      ::close(fd);
-      return -1;
-    }
-    return fd;
-  }
+  static int connect_to(std::uint16_t port) { return connect_loopback(port); }
 
   pid_t pid_ = -1;
   std::uint16_t device_port_ = 0;

@@ -384,18 +384,7 @@ TEST(RobotSim, FaultKnobsActOnTheBridge) {
   EXPECT_EQ(sim.control("robot-drop"), "ok no client");
 }
 
-int raw_connect(std::uint16_t port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
+int raw_connect(std::uint16_t port) { return palp::sim::test::connect_loopback(port); }
 
 TEST(RobotSim, APartialRequestNeitherBlocksTheSimulatorNorLosesTheRequest) {
   SimProcess sim({"--robot-port", "0"}, false);

@@ -16,6 +16,7 @@
 #include "palp/protocol/frame.hpp"
 #include "palp/protocol/stream.hpp"
 #include "palp/sim/server.hpp"
+#include "loopback.hpp"
 
 namespace palp::sim {
 namespace {
@@ -26,17 +27,8 @@ using namespace std::chrono_literals;
 /// A blocking loopback client socket.
 struct Client {
   /// rcvbuf_bytes > 0: a small receive buffer, so a host that does not read backs up soon
-  explicit Client(std::uint16_t port, int rcvbuf_bytes = 0) : fd(::socket(AF_INET, SOCK_STREAM, 0)) {
-    if (rcvbuf_bytes > 0) ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes, sizeof rcvbuf_bytes);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(port);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-      ::close(fd);
-      fd = -1;
-    }
-  }
+  explicit Client(std::uint16_t port, int rcvbuf_bytes = 0)
+      : fd(test::connect_loopback(port, rcvbuf_bytes)) {}
   ~Client() {
     if (fd >= 0) ::close(fd);
   }

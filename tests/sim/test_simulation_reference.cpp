@@ -21,8 +21,7 @@
 #include <memory>
 #include <vector>
 
-#include "palp/sim/plant_link.hpp"
-#include "palp/sim/simulation.hpp"
+#include "multisine_scenario.hpp"
 
 namespace palp::sim {
 namespace {
@@ -42,13 +41,6 @@ struct Fnv1a {
   }
 };
 
-template <class M>
-void send(Simulation& s, const M& m, u16 seq, std::uint64_t wall_us) {
-  std::vector<u8> w(kMaxWireFrame);
-  w.resize(encode_message(m, seq, 0, w.data(), w.size()));
-  s.host_bytes(w.data(), w.size(), wall_us);
-}
-
 struct Fingerprint {
   std::uint64_t device_hash;  // the bytes the host receives
   std::uint64_t state_hash;   // the plant's state every millisecond
@@ -58,33 +50,17 @@ struct Fingerprint {
 
 Fingerprint run_scenario(const char* phantom, double x_m, double y_m, std::uint32_t rate_Hz,
                          std::uint64_t seed, int ms) {
-  fw::DeviceIdentity id;
-  id.board = "palp-sim";
-  Simulation s(id, std::make_unique<ModelPlant>(phantom, seed));
+  const auto sim = test::make_scenario_simulation(phantom, x_m, y_m, seed);
+  Simulation& s = *sim;
   auto& plant = static_cast<ModelPlant&>(s.plant()).model();
-  plant.set_mount(x_m, y_m, plant.phantom()->surface_z_m(x_m, y_m) - 0.025);
   std::uint64_t wall = 0;
-  SetParams p;
-  p.control_rate_Hz = rate_Hz;
-  send(s, p, 1, wall);
-  send(s, StreamConfigure{kAllChannels, static_cast<u16>(rate_Hz / 10000), 40}, 2, wall);
-  send(s, StreamStart{}, 3, wall);
-  LoadMultisine m;
-  m.line_first = 1;
-  m.line_last = 400;
-  m.line_step = 1;
-  m.fundamental_Hz = 0.25f;
-  m.line_amplitude_A = 0.0005f;
-  m.offset_A = 1.0f;
-  m.periods = 0;
-  send(s, m, 4, wall);
-  send(s, ProgramStart{}, 5, wall);
+  test::start_multisine_scenario(s, rate_Hz, wall);
   Fnv1a device, state;
   std::uint64_t device_bytes = 0;
   for (int k = 0; k < ms; ++k) {
     EXPECT_EQ(s.run(rate_Hz / 1000, wall), rate_Hz / 1000) << "ms " << k;
     wall += 1000;
-    send(s, Heartbeat{}, 6, wall);
+    test::send_frame(s, Heartbeat{}, 6, wall);
     const std::vector<u8> bytes = s.take_device_bytes();
     device.bytes(bytes.data(), bytes.size());
     device_bytes += bytes.size();
