@@ -134,10 +134,7 @@ TEST(StandardLinearSolid, StiffensWithFrequency) {
 
 // The option through a phantom file: a current step creeps in, ending at the relaxed depth.
 TEST(StandardLinearSolid, PhantomOptionMakesTheProbeCreepUnderConstantCurrent) {
-  std::ifstream in(phantom_dir() / "solid_1d.phantom");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  std::string s(shipped_phantom_text("solid_1d"));
   const std::string kv = "viscoelasticity = kelvin_voigt";
   s.replace(s.find(kv), kv.size(), "viscoelasticity = standard_linear_solid");
   s += "sls_relaxation_time_s = 1.0\nsls_strength = 0.5\n";

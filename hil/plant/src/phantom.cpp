@@ -2,16 +2,19 @@
 #include "palp/plant/phantom.hpp"
 
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "key_value_file.hpp"
 #include "phantom_read.hpp"
-
-#ifndef PALP_PHANTOM_DIR
-#error "PALP_PHANTOM_DIR must name hil/plant/phantoms (set by hil/plant/CMakeLists.txt)"
-#endif
+#include "shipped_phantoms.hpp"
 
 namespace palp::plant {
+namespace {
+std::span<const detail::ShippedPhantom> shipped() {
+  return {detail::kShippedPhantoms, detail::kShippedPhantomCount};
+}
+}  // namespace
 
 ProbeSite Phantom::position(int k) const {
   for (const ProbeSite& s : sites()) {
@@ -50,10 +53,23 @@ std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file) {
   return parse_phantom(text.str(), file.filename().string());
 }
 
-std::filesystem::path phantom_dir() { return std::filesystem::path(PALP_PHANTOM_DIR); }
+std::vector<std::string_view> shipped_phantom_names() {
+  std::vector<std::string_view> names;
+  for (const auto& p : shipped()) names.push_back(p.name);
+  return names;
+}
+
+std::string_view shipped_phantom_text(std::string_view name) {
+  for (const auto& p : shipped())
+    if (p.name == name) return p.text;
+  std::string known;
+  for (const auto& p : shipped()) known += (known.empty() ? "" : ", ") + std::string(p.name);
+  throw PhantomError("no shipped phantom \"" + std::string(name) + "\" (the shipped ones: " +
+                     known + ")");
+}
 
 std::shared_ptr<const Phantom> load_shipped_phantom(std::string_view name) {
-  return load_phantom(phantom_dir() / (std::string(name) + ".phantom"));
+  return parse_phantom(shipped_phantom_text(name), std::string(name) + ".phantom");
 }
 
 }  // namespace palp::plant

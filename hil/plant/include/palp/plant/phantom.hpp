@@ -89,11 +89,14 @@ std::shared_ptr<const Phantom> parse_phantom(std::string_view text, std::string_
 /// Load a phantom file. Throws PhantomError (also when the file cannot be read).
 std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file);
 
-/// The directory of the shipped phantom files (hil/plant/phantoms).
-std::filesystem::path phantom_dir();
-
-/// Load a shipped phantom by name: "hollow_1d", "solid_1d", "insert_1d", "pad_2d",
-/// "pad_2d_steep", "plane_tilted_10".
+/// The shipped phantoms (hil/plant/phantoms/*.phantom, built into the library as text, so an
+/// installed library needs no path to them): "hollow_1d", "insert_1d", "pad_2d", "pad_2d_steep",
+/// "plane_tilted_10", "solid_1d".
+std::vector<std::string_view> shipped_phantom_names();
+/// A shipped phantom's text; PhantomError naming the shipped ones for another name.
+std::string_view shipped_phantom_text(std::string_view name);
+/// Load a shipped phantom by name (error messages name it "<name>.phantom"). PhantomError for a
+/// name that is not shipped.
 std::shared_ptr<const Phantom> load_shipped_phantom(std::string_view name);
 
 /// Where a spherical tip lowered along +z first touches a phantom (README.md "Sphere tip").
