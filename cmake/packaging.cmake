@@ -9,6 +9,8 @@
 #   lib/cmake/palp/palpConfig.cmake (+ version, targets)             find_package(palp) -> palp::sdk,
 #                                                                    palp::analysis, ::device,
 #                                                                    ::experiments
+#   lib/libpalp_sim*.a, libpalp_plant.a, libpalp_fw_core.a,          palp-sim linked in:
+#   lib/palp-objects/ (palp_sim_inproc), include/palp/{sim,plant,fw}  palp::sim_inproc
 #   bin/palpctl, bin/palp-sim                                        the tools
 #   lib/udev/rules.d/70-palp.rules                                   so a non-root user can open
 #                                                                    the controller (udev reads
@@ -59,6 +61,27 @@ set_target_properties(palp_protocol_text PROPERTIES EXPORT_NAME protocol_text)
 install(TARGETS palp_sdk palp_analysis palp_device palp_experiments palp_protocol palp_protocol_text
         EXPORT palpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
+# palp-sim linked in (component sim_inproc): palp/sim_inproc.hpp and sim+inproc:// URIs for a
+# lab's own tests and CI, with the simulator's libraries under it (the real firmware core, the
+# plant with its shipped phantoms built in, the robot bridge emulator). palp_sim_inproc is an
+# OBJECT library (its URI registration must reach the program), installed as objects.
+set(PALP_SIM_EXPORTS sim_inproc sim_server sim sim_io sim_robot plant fw_core)
+if(TARGET palp_sim_inproc)
+  foreach(lib IN LISTS PALP_SIM_EXPORTS)
+    palp_exportable_includes(palp_${lib})
+    set_target_properties(palp_${lib} PROPERTIES EXPORT_NAME ${lib})
+  endforeach()
+  list(TRANSFORM PALP_SIM_EXPORTS PREPEND palp_ OUTPUT_VARIABLE palp_sim_targets)
+  install(TARGETS ${palp_sim_targets}
+          EXPORT palpTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk
+          OBJECTS DESTINATION ${CMAKE_INSTALL_LIBDIR}/palp-objects COMPONENT sdk)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/sim_inproc/include/ ${PROJECT_SOURCE_DIR}/hil/sim/include/
+                    ${PROJECT_SOURCE_DIR}/hil/plant/include/ ${PROJECT_SOURCE_DIR}/firmware/core/include/
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT sdk
+          FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+endif()
+
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/protocol/host/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT sdk

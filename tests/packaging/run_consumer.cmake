@@ -2,8 +2,10 @@
 #   1. cmake --install PALP_BUILD_DIR --prefix WORK_DIR/prefix   (every component)
 #   2. the installed tree holds the libraries, headers, package files, tools and udev rules
 #   3. configure + build consumer/ with CMAKE_PREFIX_PATH=the prefix, run it, check its output
+#   4. the same for sim_consumer/: palp::sim_inproc, a sim+inproc:// URI, a hold on the simulator
 cmake_minimum_required(VERSION 3.25)
-foreach(v PALP_SOURCE_DIR PALP_BUILD_DIR PALP_VERSION CONSUMER_SOURCE WORK_DIR GENERATOR CXX_COMPILER)
+foreach(v PALP_SOURCE_DIR PALP_BUILD_DIR PALP_VERSION CONSUMER_SOURCE SIM_CONSUMER_SOURCE WORK_DIR
+        GENERATOR CXX_COMPILER)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "run_consumer.cmake needs -D${v}=...")
   endif()
@@ -58,3 +60,16 @@ foreach(expect "sdk ${PALP_VERSION}" "uri host=127.0.0.1 port=7070 sim_tcp=1" "p
   endif()
 endforeach()
 message(STATUS "consumer built against ${prefix} and ran:\n${step_output}")
+
+step("sim consumer configure" ${CMAKE_COMMAND} -S ${SIM_CONSUMER_SOURCE} -B ${WORK_DIR}/sim_consumer
+     -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+     -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_BUILD_TYPE=Release)
+step("sim consumer build" ${CMAKE_COMMAND} --build ${WORK_DIR}/sim_consumer)
+step("sim consumer run" ${WORK_DIR}/sim_consumer/sim_consumer)
+foreach(expect "board palp-sim serial SIM-0001" "hold ended completed")
+  string(FIND "${step_output}" "${expect}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "sim_consumer output lacks \"${expect}\":\n${step_output}")
+  endif()
+endforeach()
+message(STATUS "sim_consumer built against ${prefix} and ran:\n${step_output}")
