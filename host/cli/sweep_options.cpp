@@ -64,19 +64,19 @@ StaticPoint read_static(const std::string& file) {
   return s;
 }
 
-struct FreeAirPoint {
-  double m_v_kg = 0, b_v_N_s_per_m = 0;
-};
-
-FreeAirPoint read_freeair(const std::string& file) {
+/// The free-air m_v and b_v, read through free_air_json's own table.
+an::FreeAirResult read_freeair(const std::string& file) {
   const json doc = read_json_file(file, "--freeair");
   const json& j = analysed(doc);
   if (!j.is_object() || !j.contains("free_air") || !j["free_air"].is_object())
     throw palp::RecordingError(file, 0,
                                "--freeair: no \"free_air\" object: give the --json output (or result.json) of "
                                "palpctl freeair or palpctl analyze freeair");
-  const json& f = j["free_air"];
-  return {need_number(f, "m_v_kg", file, "--freeair"), need_number(f, "b_v_N_s_per_m", file, "--freeair")};
+  try {
+    return palp::free_air_from_json(j);
+  } catch (const palp::ConfigError& e) {
+    throw palp::RecordingError(file, 0, std::string("--freeair: ") + e.what());
+  }
 }
 
 }  // namespace

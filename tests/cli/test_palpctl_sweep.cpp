@@ -138,6 +138,28 @@ TEST_F(PalpctlAnalyzeSweep, StaticFileWithoutATangentStiffnessNamesTheKey) {
   EXPECT_NE(r.err.find("--static: \"k_tangent_N_per_mm\" is null (no contact point)"), std::string::npos) << r.err;
 }
 
+TEST_F(PalpctlAnalyzeSweep, FreeairFileReadThroughTheFreeAirTableNamesANullOrMissingKey) {
+  const auto fa = palpctl({"--json", "analyze", "freeair", "--omega-n-rad-per-s", "16.5192", "--zeta", "0.2595",
+                           "--kv-N-per-mm", "0.0439"});
+  ASSERT_EQ(fa.code, 0) << fa.err;
+  json j = json::parse(fa.out);
+  j["free_air"]["m_v_kg"] = nullptr;
+  j["free_air"]["m_v_kg_reason"] = "not finite";
+  const fs::path null_file = dir_ / "null.json";
+  std::ofstream(null_file) << j.dump();
+  auto r = palpctl({"analyze", "sweep", "--input", table("c.csv", false), "--freeair", null_file.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, "palpctl: " + null_file.string() + ": --freeair: \"free_air.m_v_kg\" is null (not finite)\n");
+
+  j["free_air"]["m_v_kg"] = 0.16;
+  j["free_air"].erase("b_v_N_s_per_m");
+  const fs::path missing_file = dir_ / "missing.json";
+  std::ofstream(missing_file) << j.dump();
+  r = palpctl({"analyze", "sweep", "--input", table("c.csv", false), "--freeair", missing_file.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, "palpctl: " + missing_file.string() + ": --freeair: missing key \"free_air.b_v_N_s_per_m\"\n");
+}
+
 TEST_F(PalpctlAnalyzeSweep, TableWithTheOtherSignConventionIsFlagged) {
   const auto r = palpctl({"--json", "analyze", "sweep", "--input", table("c.csv", false, true)});
   ASSERT_EQ(r.code, 0) << r.err;

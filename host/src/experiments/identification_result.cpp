@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "format/field_table.hpp"
 #include "palp/error.hpp"
 #include "palp/result.hpp"
 #include "result_dir.hpp"
@@ -15,23 +16,95 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPerMm = 1e-3;   // N/m -> N/mm
-constexpr double kMm = 1e3;       // m -> mm
+namespace an = analysis;
+using format::Field;
+using format::kMm;
+using format::kNPerMm;
+using format::Need;
 constexpr const char* kSweepStem = "sweep";
 
-/// A finite number, or null with `<key>_reason`.
-void put(json& j, const std::string& key, double v, const char* why_not = "not finite") {
-  if (std::isfinite(v)) {
-    j[key] = v;
-  } else {
-    j[key] = nullptr;
-    j[key + "_reason"] = why_not;
-  }
-}
+// The summaries' numbers, each a number or null with `<key>_reason` (Need::or_null).
+const Field<an::SecondOrderFit> kFitSummaryFields[] = {
+    {"omega_n_rad_per_s", &an::SecondOrderFit::omega_n_rad_per_s, 1.0, Need::or_null},
+    {"omega_n_rad_per_s_se", &an::SecondOrderFit::omega_n_rad_per_s_se, 1.0, Need::or_null},
+    {"zeta", &an::SecondOrderFit::zeta, 1.0, Need::or_null},
+    {"zeta_se", &an::SecondOrderFit::zeta_se, 1.0, Need::or_null},
+    {"m_kg", &an::SecondOrderFit::m_kg, 1.0, Need::or_null},
+    {"m_kg_se", &an::SecondOrderFit::m_kg_se, 1.0, Need::or_null},
+    {"b_N_s_per_m", &an::SecondOrderFit::b_N_s_per_m, 1.0, Need::or_null},
+    {"b_N_s_per_m_se", &an::SecondOrderFit::b_N_s_per_m_se, 1.0, Need::or_null},
+    {"k_N_per_mm", &an::SecondOrderFit::k_N_per_m, kNPerMm, Need::or_null},
+    {"k_N_per_mm_se", &an::SecondOrderFit::k_N_per_m_se, kNPerMm, Need::or_null},
+    {"normalized_cost", &an::SecondOrderFit::normalized_cost, 1.0, Need::or_null, {},
+     "the lines carry no noise estimate (a table without sigma)"},
+    {"adequate", &an::SecondOrderFit::adequate},
+    {"fit_converged", &an::SecondOrderFit::converged},
+};
 
-void put_se(json& j, const std::string& key, double v, double se) {
-  put(j, key, v);
-  put(j, key + "_se", se);
+const Field<an::Frf> kFrfSummaryFields[] = {
+    {"method", &an::Frf::method},
+    {"line_spacing_Hz", &an::Frf::line_spacing_Hz},
+    {"device_time_s", &an::Frf::device_time_s},
+};
+
+const Field<an::FrfDistortion> kDistortionSummaryFields[] = {
+    {"even_ratio", &an::FrfDistortion::even_ratio},
+    {"odd_ratio", &an::FrfDistortion::odd_ratio},
+    {"excited_rms_mm", &an::FrfDistortion::excited_rms_m, kMm},
+    {"even_rms_mm", &an::FrfDistortion::even_rms_m, kMm},
+    {"odd_rms_mm", &an::FrfDistortion::odd_rms_m, kMm},
+    {"noise_rms_mm", &an::FrfDistortion::noise_rms_m, kMm},
+    {"too_large", &an::FrfDistortion::too_large},
+    {"warning", &an::FrfDistortion::warning},
+};
+
+const Field<an::FreeAirResult> kFreeAirSummaryFields[] = {
+    {"omega_n_rad_per_s", &an::FreeAirResult::omega_n_rad_per_s, 1.0, Need::or_null},
+    {"zeta", &an::FreeAirResult::zeta, 1.0, Need::or_null},
+    {"kv_N_per_mm", &an::FreeAirResult::k_v_N_per_m, kNPerMm, Need::or_null},
+    {"m_v_kg", &an::FreeAirResult::m_v_kg, 1.0, Need::or_null},
+    {"m_v_kg_se", &an::FreeAirResult::m_v_kg_se, 1.0, Need::or_null},
+    {"b_v_N_s_per_m", &an::FreeAirResult::b_v_N_s_per_m, 1.0, Need::or_null},
+    {"b_v_N_s_per_m_se", &an::FreeAirResult::b_v_N_s_per_m_se, 1.0, Need::or_null},
+};
+
+const Field<an::Decomposition> kDecompositionSummaryFields[] = {
+    {"k_o_N_per_mm", &an::Decomposition::k_o_N_per_m, kNPerMm, Need::or_null},
+    {"k_eff_N_per_mm", &an::Decomposition::k_eff_N_per_m, kNPerMm, Need::or_null},
+    {"m_eff_kg", &an::Decomposition::m_eff_kg, 1.0, Need::or_null},
+    {"m_eff_kg_se", &an::Decomposition::m_eff_kg_se, 1.0, Need::or_null},
+    {"b_total_N_s_per_m", &an::Decomposition::b_total_N_s_per_m, 1.0, Need::or_null},
+    {"b_total_N_s_per_m_se", &an::Decomposition::b_total_N_s_per_m_se, 1.0, Need::or_null},
+    {"b_o_N_s_per_m", &an::Decomposition::b_o_N_s_per_m, 1.0, Need::or_null},
+    {"b_o_N_s_per_m_se", &an::Decomposition::b_o_N_s_per_m_se, 1.0, Need::or_null},
+    {"m_o_kg", &an::Decomposition::m_o_kg, 1.0, Need::or_null},
+};
+constexpr const char* kMEffNote =
+    "m_eff = k_eff / omega_n^2 with the static k_eff, as the paper computes it: it folds any "
+    "dynamic stiffening into an apparent mass; m_kg is the fit's own mass";
+
+const Field<an::Viscoelastic> kViscoelasticSummaryFields[] = {
+    {"delta0_mm", &an::Viscoelastic::delta0_m, kMm},
+    {"tip_radius_mm", &an::Viscoelastic::tip_radius_m, kMm},
+    {"contact_radius_mm", &an::Viscoelastic::contact_radius_m, kMm},
+    {"flagged", &an::Viscoelastic::flagged},
+};
+
+const Field<an::ViscoelasticLine> kViscoelasticLineSummaryFields[] = {
+    {"f_Hz", &an::ViscoelasticLine::f_Hz},
+    {"k_storage_N_per_mm", &an::ViscoelasticLine::k_storage_N_per_m, kNPerMm, Need::or_null},
+    {"k_loss_N_per_mm", &an::ViscoelasticLine::k_loss_N_per_m, kNPerMm, Need::or_null},
+    {"E_storage_Pa", &an::ViscoelasticLine::E_storage_Pa, 1.0, Need::or_null},
+    {"E_loss_Pa", &an::ViscoelasticLine::E_loss_Pa, 1.0, Need::or_null},
+    {"tan_delta", &an::ViscoelasticLine::tan_delta, 1.0, Need::or_null},
+};
+
+/// `j`'s object `key` (ConfigError naming it when absent or not an object).
+const json& summary_object(const json& j, const char* key, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end()) throw ConfigError("missing key \"" + where + key + "\"");
+  if (!it->is_object()) throw ConfigError("\"" + where + key + "\" is not an object");
+  return *it;
 }
 
 std::string shortest(double v) {
@@ -42,35 +115,17 @@ std::string shortest(double v) {
 
 }  // namespace
 
-json sweep_summary_json(const analysis::Frf& frf, const analysis::SecondOrderFit& fit) {
+json sweep_summary_json(const an::Frf& frf, const an::SecondOrderFit& fit) {
   json j;
-  j["method"] = frf.method;
+  format::write_fields(j, frf, kFrfSummaryFields);
   j["lines"] = frf.lines.size();
-  j["line_spacing_Hz"] = frf.line_spacing_Hz;
   j["f_lo_Hz"] = frf.lines.empty() ? 0.0 : frf.lines.front().f_Hz;
   j["f_hi_Hz"] = frf.lines.empty() ? 0.0 : frf.lines.back().f_Hz;
-  j["device_time_s"] = frf.device_time_s;
   j["notes"] = frf.notes;
-  put_se(j, "omega_n_rad_per_s", fit.omega_n_rad_per_s, fit.omega_n_rad_per_s_se);
-  put(j, "f_n_Hz", fit.omega_n_rad_per_s / (2 * M_PI));
-  put_se(j, "zeta", fit.zeta, fit.zeta_se);
-  put_se(j, "m_kg", fit.m_kg, fit.m_kg_se);
-  put_se(j, "b_N_s_per_m", fit.b_N_s_per_m, fit.b_N_s_per_m_se);
-  put_se(j, "k_N_per_mm", fit.k_N_per_m * kPerMm, fit.k_N_per_m_se * kPerMm);
-  if (fit.normalized_cost) {
-    j["normalized_cost"] = *fit.normalized_cost;
-  } else {
-    j["normalized_cost"] = nullptr;
-    j["normalized_cost_reason"] = "the lines carry no noise estimate (a table without sigma)";
-  }
-  j["adequate"] = fit.adequate;
-  j["fit_converged"] = fit.converged;
+  format::write_fields(j, fit, kFitSummaryFields);
+  format::put_or_null(j, "f_n_Hz", fit.omega_n_rad_per_s / (2 * M_PI));
   if (frf.distortion) {
-    const auto& d = *frf.distortion;
-    j["distortion"] = {{"even_ratio", d.even_ratio},         {"odd_ratio", d.odd_ratio},
-                       {"excited_rms_mm", d.excited_rms_m * kMm}, {"even_rms_mm", d.even_rms_m * kMm},
-                       {"odd_rms_mm", d.odd_rms_m * kMm},     {"noise_rms_mm", d.noise_rms_m * kMm},
-                       {"too_large", d.too_large},           {"warning", d.warning}};
+    format::write_fields(j["distortion"], *frf.distortion, kDistortionSummaryFields);
   } else {
     j["distortion"] = nullptr;
     j["distortion_reason"] = frf.method == "multisine"
@@ -80,49 +135,65 @@ json sweep_summary_json(const analysis::Frf& frf, const analysis::SecondOrderFit
   return j;
 }
 
-json free_air_json(const analysis::FreeAirResult& r) {
+json free_air_json(const an::FreeAirResult& r) {
   json j;
-  put(j, "omega_n_rad_per_s", r.omega_n_rad_per_s);
-  put(j, "zeta", r.zeta);
-  put(j, "kv_N_per_mm", r.k_v_N_per_m * kPerMm);
-  put_se(j, "m_v_kg", r.m_v_kg, r.m_v_kg_se);
-  put_se(j, "b_v_N_s_per_m", r.b_v_N_s_per_m, r.b_v_N_s_per_m_se);
+  format::write_fields(j, r, kFreeAirSummaryFields);
   return j;
 }
 
-json decomposition_json(const analysis::Decomposition& d) {
+an::FreeAirResult free_air_from_json(const json& analysis) {
+  an::FreeAirResult r;
+  const format::JsonSource f(summary_object(analysis, "free_air", ""), "free_air.", format::Naming::dotted_path);
+  format::read_fields(f, r, kFreeAirSummaryFields);
+  for (const auto& [key, v] : {std::pair{"m_v_kg", r.m_v_kg}, {"b_v_N_s_per_m", r.b_v_N_s_per_m}})
+    if (!std::isfinite(v)) f.fail(key, "is null (" + f.reason(key) + ")");
+  return r;
+}
+
+json decomposition_json(const an::Decomposition& d) {
   json j;
-  put(j, "k_o_N_per_mm", d.k_o_N_per_m * kPerMm);
-  put(j, "k_eff_N_per_mm", d.k_eff_N_per_m * kPerMm);
-  put_se(j, "m_eff_kg", d.m_eff_kg, d.m_eff_kg_se);
-  put_se(j, "b_total_N_s_per_m", d.b_total_N_s_per_m, d.b_total_N_s_per_m_se);
-  put_se(j, "b_o_N_s_per_m", d.b_o_N_s_per_m, d.b_o_N_s_per_m_se);
-  put(j, "m_o_kg", d.m_o_kg);
-  j["m_eff_note"] =
-      "m_eff = k_eff / omega_n^2 with the static k_eff, as the paper computes it: it folds any "
-      "dynamic stiffening into an apparent mass; m_kg is the fit's own mass";
+  format::write_fields(j, d, kDecompositionSummaryFields);
+  j["m_eff_note"] = kMEffNote;
   return j;
 }
 
-json viscoelastic_json(const analysis::Viscoelastic& v) {
+an::Decomposition decomposition_from_json(const json& analysis) {
+  an::Decomposition d;
+  format::read_fields(format::JsonSource(analysis, "", format::Naming::dotted_path), d, kDecompositionSummaryFields);
+  return d;
+}
+
+json viscoelastic_json(const an::Viscoelastic& v) {
   json j;
-  j["delta0_mm"] = v.delta0_m * kMm;
-  j["tip_radius_mm"] = v.tip_radius_m * kMm;
-  j["contact_radius_mm"] = v.contact_radius_m * kMm;
-  j["flagged"] = v.flagged;
+  format::write_fields(j, v, kViscoelasticSummaryFields);
   if (v.flagged) j["flag_reason"] = v.flag_reason;
   json lines = json::array();
   for (const auto& l : v.lines) {
-    json row = {{"f_Hz", l.f_Hz}};
-    put(row, "k_storage_N_per_mm", l.k_storage_N_per_m * kPerMm);
-    put(row, "k_loss_N_per_mm", l.k_loss_N_per_m * kPerMm);
-    put(row, "E_storage_Pa", l.E_storage_Pa);
-    put(row, "E_loss_Pa", l.E_loss_Pa);
-    put(row, "tan_delta", l.tan_delta);
-    lines.push_back(row);
+    json row;
+    format::write_fields(row, l, kViscoelasticLineSummaryFields);
+    lines.push_back(std::move(row));
   }
-  j["lines"] = lines;
+  j["lines"] = std::move(lines);
   return j;
+}
+
+an::Viscoelastic viscoelastic_from_json(const json& analysis) {
+  an::Viscoelastic v;
+  const json& j = summary_object(analysis, "viscoelastic", "");
+  format::read_fields(format::JsonSource(j, "viscoelastic.", format::Naming::dotted_path), v, kViscoelasticSummaryFields);
+  if (v.flagged) v.flag_reason = format::JsonSource(j, "viscoelastic.", format::Naming::dotted_path).text("flag_reason");
+  const auto it = j.find("lines");
+  if (it == j.end()) throw ConfigError("missing key \"viscoelastic.lines\"");
+  if (!it->is_array()) throw ConfigError("\"viscoelastic.lines\" is not an array");
+  for (std::size_t k = 0; k < it->size(); ++k) {
+    const json& row = (*it)[k];
+    const std::string where = "viscoelastic.lines[" + std::to_string(k) + "].";
+    if (!row.is_object()) throw ConfigError("\"" + where.substr(0, where.size() - 1) + "\" is not an object");
+    an::ViscoelasticLine l;
+    format::read_fields(format::JsonSource(row, where, format::Naming::dotted_path), l, kViscoelasticLineSummaryFields);
+    v.lines.push_back(l);
+  }
+  return v;
 }
 
 std::string format_frf_table(const analysis::Frf& frf) {

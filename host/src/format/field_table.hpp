@@ -11,7 +11,8 @@
 //   format::write_fields(j, rig, kRigFields);          // j["safe_height_mm"] = safe_height_m * 1e3
 //   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
 //
-// A member is a double, an optional double (null in the file when absent), an int, a uint32, a
+// A member is a double, an optional double (null in the file when absent; with Need::or_null a
+// double too may be null, with `<key>_reason`), an int, a uint32, a
 // size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]), a
 // vector of doubles (an array, each element scaled; the Source's numbers(key) reads it), or a
 // protocol message's float (written as its shortest decimal, f32) or uint16. The file
@@ -47,6 +48,12 @@ enum class Need {
   required,  ///< a file without the key (or with null) is an error
   optional,  ///< absent or null: the member keeps its default (an optional double: none)
   written,   ///< written only: derived again on reading (the reader skips it)
+  /// A number, or null with `<key>_reason` (DESIGN.md: never NaN in a file). Written: a double
+  /// that is not finite, or an optional double without a value, as null with `<key>_reason` =
+  /// the entry's null_reason. Read: a number; null back into what the writer had, none for an
+  /// optional double and NaN for a double (a caller that needs the value says so with the
+  /// file's reason: JsonSource::reason).
+  or_null,
 };
 
 /// The values a reader accepts for a number: [lo, hi], or (0, hi] when positive.
@@ -72,6 +79,7 @@ struct Field {
   double scale = 1.0;  ///< file value = SI value x scale
   Need need = Need::required;
   Range range{};
+  const char* null_reason = "not finite";  ///< Need::or_null: `<key>_reason` when written null
 };
 
 /// The shortest decimal of a protocol f32 as a double (0.01f is written 0.01, not 0.009999999776).
@@ -92,6 +100,17 @@ inline Pose pose_of_mm_deg(const double (&v)[6]) {
   return Pose{v[0] / kMm, v[1] / kMm, v[2] / kMm, v[3] / kDeg, v[4] / kDeg, v[5] / kDeg};
 }
 
+/// j[key] = v when v is a finite number, else null and j["<key>_reason"] = why_not (Need::or_null).
+template <class Json>
+void put_or_null(Json& j, const std::string& key, std::optional<double> v, const char* why_not = "not finite") {
+  if (v && std::isfinite(*v)) {
+    j[key] = *v;
+  } else {
+    j[key] = nullptr;
+    j[key + "_reason"] = why_not;
+  }
+}
+
 /// Every field of `table` into j (nlohmann::json, or ordered_json: the table's order is then the
 /// file's order).
 template <class Json, class T>
@@ -101,6 +120,13 @@ void write_fields(Json& j, const T& v, std::span<const Field<T>> table) {
         [&](auto member) {
           using M = std::remove_cvref_t<decltype(v.*member)>;
           const M& x = v.*member;
+          if constexpr (std::is_same_v<M, double> || std::is_same_v<M, std::optional<double>>) {
+            if (f.need == Need::or_null) {
+              const std::optional<double> o(x);
+              put_or_null(j, f.key, o ? std::optional<double>(*o * f.scale) : std::nullopt, f.null_reason);
+              return;
+            }
+          }
           if constexpr (std::is_same_v<M, double>) j[f.key] = x * f.scale;
           else if constexpr (std::is_same_v<M, float>) j[f.key] = f32(x) * f.scale;
           else if constexpr (std::is_same_v<M, std::optional<double>>) j[f.key] = x ? Json(*x * f.scale) : Json(nullptr);
@@ -121,9 +147,9 @@ void write_fields(Json& j, const T& v, const Field<T> (&table)[N]) {
 
 /// Every field of `table` but the Need::written ones from `src`, a format's checked access to a
 /// JSON object: has(key) (present and not null), number(key, range), integer(key, range),
-/// boolean(key), text(key) and, where the format has them, pose(key) and numbers(key) (a vector
-/// of doubles), each throwing its ConfigError when the key is absent or the value is not of its
-/// kind or range. An optional key that is absent is skipped.
+/// boolean(key), text(key) and, where the format has them, pose(key), numbers(key) (a vector
+/// of doubles) and is_null(key) (Need::or_null), each throwing its ConfigError
+/// when the key is absent or the value is not of its kind or range. An optional key that is absent is skipped.
 // GCC 12 sees the visit's store into an optional<double> member of a struct that holds none (the
 // alternative is instantiated for every table) as a write past its end: a false positive.
 #if defined(__GNUC__) && !defined(__clang__)
@@ -135,6 +161,23 @@ void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
   for (const Field<T>& f : table) {
     if (f.need == Need::written) continue;
     if (f.need == Need::optional && !src.has(f.key)) continue;
+    if (f.need == Need::or_null) {
+      if constexpr (requires { src.is_null(f.key); }) {
+        if (src.is_null(f.key)) {
+          std::visit(
+              [&](auto member) {
+                using M = std::remove_cvref_t<decltype(v.*member)>;
+                if constexpr (std::is_same_v<M, std::optional<double>>) v.*member = std::nullopt;
+                else if constexpr (std::is_same_v<M, double>) v.*member = NAN;
+                else throw ConfigError(std::string(f.key) + ": only a number may be null");
+              },
+              f.member);
+          continue;
+        }
+      } else {
+        throw ConfigError(std::string(f.key) + ": this format's reader takes no nulls");
+      }
+    }
     std::visit(
         [&](auto member) {
           using M = std::remove_cvref_t<decltype(v.*member)>;
@@ -185,6 +228,16 @@ class JsonSource {
   bool has(const char* key) const {
     const auto it = j_.find(key);
     return it != j_.end() && !it->is_null();
+  }
+  /// Present and null (Need::or_null).
+  bool is_null(const char* key) const {
+    const auto it = j_.find(key);
+    return it != j_.end() && it->is_null();
+  }
+  /// `<key>_reason`, the text beside a null (Need::or_null); "no reason given" without one.
+  std::string reason(const char* key) const {
+    const auto it = j_.find(std::string(key) + "_reason");
+    return it != j_.end() && it->is_string() ? it->get<std::string>() : "no reason given";
   }
   double number(const char* key, const Range&) const {
     const auto& v = at(key);
