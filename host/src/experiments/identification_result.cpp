@@ -8,6 +8,7 @@
 #include "palp/error.hpp"
 #include "palp/result.hpp"
 #include "result_dir.hpp"
+#include "run_json.hpp"
 
 namespace palp {
 
@@ -218,13 +219,7 @@ fs::path write_identification_result(const fs::path& dir_in, const Identificatio
   summary["firmware_version"] = run.device.firmware_version;
   summary["parameters"] = sc && sc->extra.contains("identification") ? sc->extra["identification"] : json(nullptr);
   summary["recordings"] = json::array({std::string(kSweepStem) + ".csv"});
-  const char* end = proto::enum_name(run.program.end);
-  summary["run"] = {{"end", run.interrupted ? "interrupted" : end ? end : "unknown"},
-                    {"t_device_s", run.program.t_device_s},
-                    {"samples", run.recording.size()},
-                    {"samples_missing", run.samples_missing},
-                    {"interrupted", run.interrupted},
-                    {"control_rate_Hz", run.control_rate_Hz}};
+  summary["run"] = identification_run_json(run);
   summary["analysis"] = analysis;
   if (analysis.is_null())
     summary["analysis_reason"] = run.analysis_reason.empty() ? "not analysed" : run.analysis_reason;

@@ -6,6 +6,7 @@
 #include "palp/error.hpp"
 #include "palp/result.hpp"
 #include "result_dir.hpp"
+#include "run_json.hpp"
 
 namespace palp {
 
@@ -15,18 +16,6 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kIndentationStem = "indentation";
-
-
-json run_summary(const IndentationRun& run) {
-  const char* end = proto::enum_name(run.program.end);
-  return {{"end", run.interrupted ? "interrupted" : end ? end : "unknown"},
-          {"t_device_s", run.program.t_device_s},
-          {"repetitions_done", run.program.repetitions_done},
-          {"samples", run.recording.size()},
-          {"samples_missing", run.samples_missing},
-          {"interrupted", run.interrupted},
-          {"float_z_mm", run.float_z_m * 1e3}};
-}
 
 /// A required key of result.json, or a RecordingError naming it.
 const json& need(const json& j, const std::string& key, const std::string& file,
@@ -48,7 +37,7 @@ fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwri
   summary["firmware_version"] = run.device.firmware_version;
   summary["parameters"] = indentation_settings_json(run.settings);
   summary["recordings"] = json::array({std::string(kIndentationStem) + ".csv"});
-  summary["run"] = run_summary(run);
+  summary["run"] = indentation_run_json(run);
   if (run.analysis) {
     summary["analysis"] = indentation_summary_json(
         *run.analysis, run.repetitions ? &*run.repetitions : nullptr, run.settings.analysis);
@@ -122,10 +111,10 @@ IndentationRun indentation_run_of(const LoadedResult& result) {
     throw RecordingError(name, 0, e.what());
   }
   run.recording = result.recordings.front().second;
-  if (const json& run_j = need(result.summary, "run", name); run_j.is_object()) {
-    run.interrupted = run_j.value("interrupted", false);
-    run.samples_missing = run_j.value("samples_missing", std::uint64_t{0});
-    run.float_z_m = run_j.value("float_z_mm", 0.0) * 1e-3;
+  try {
+    read_indentation_run(need(result.summary, "run", name), run);
+  } catch (const ConfigError& e) {
+    throw RecordingError(name, 0, e.what());
   }
   if (const json& d = need(result.summary, "device", name); d.is_object()) {
     try {

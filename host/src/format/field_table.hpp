@@ -12,8 +12,9 @@
 //   format::read_fields(source, rig, kRigFields);      // safe_height_m = file value / 1e3
 //
 // A member is a double, an optional double (null in the file when absent; with Need::or_null a
-// double too may be null, with `<key>_reason`), an int, a uint32, a
-// size_t, a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm, a_deg, b_deg, c_deg]), a
+// double too may be null, with `<key>_reason`), an int, a uint32, a size_t or uint64
+// (JsonSource::count reads it exactly), a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm,
+// a_deg, b_deg, c_deg]), a
 // vector of doubles (an array, each element scaled; the Source's numbers(key) reads it), or a
 // protocol message's float (written as its shortest decimal, f32) or uint16. The file
 // value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
@@ -71,9 +72,11 @@ inline double from_file(double file_value, double scale) {
 
 template <class T>
 struct Field {
+  // unsigned long and unsigned long long: size_t and uint64_t, whichever of the two each is on
+  // the platform (both unsigned long on 64-bit Linux, distinct on macOS and Windows).
   using Member = std::variant<double T::*, std::optional<double> T::*, int T::*, std::uint32_t T::*,
-                              std::size_t T::*, bool T::*, std::string T::*, Pose T::*,
-                              std::vector<double> T::*, float T::*, std::uint16_t T::*>;
+                              unsigned long T::*, unsigned long long T::*, bool T::*, std::string T::*,
+                              Pose T::*, std::vector<double> T::*, float T::*, std::uint16_t T::*>;
   const char* key;
   Member member;
   double scale = 1.0;  ///< file value = SI value x scale
@@ -187,8 +190,10 @@ void read_fields(const Source& src, T& v, std::span<const Field<T>> table) {
           else if constexpr (std::is_same_v<M, int>) x = static_cast<int>(src.integer(f.key, f.range));
           else if constexpr (std::is_same_v<M, float>)
             x = static_cast<float>(from_file(src.number(f.key, f.range), f.scale));
-          else if constexpr (std::is_same_v<M, std::size_t> || std::is_same_v<M, std::uint32_t> ||
-                             std::is_same_v<M, std::uint16_t>)
+          else if constexpr (std::is_same_v<M, unsigned long> || std::is_same_v<M, unsigned long long>) {
+            if constexpr (requires { src.count(f.key); }) x = static_cast<M>(src.count(f.key));
+            else x = static_cast<M>(src.integer(f.key, f.range));
+          } else if constexpr (std::is_same_v<M, std::uint32_t> || std::is_same_v<M, std::uint16_t>)
             x = static_cast<M>(src.integer(f.key, f.range));
           else if constexpr (std::is_same_v<M, bool>) x = src.boolean(f.key);
           else if constexpr (std::is_same_v<M, std::string>) x = src.text(f.key);
@@ -246,6 +251,16 @@ class JsonSource {
   }
   long long integer(const char* key, const Range& r) const {
     return static_cast<long long>(number(key, r));
+  }
+  /// A count (a size_t or uint64 member): a non-negative integer, read exactly.
+  std::uint64_t count(const char* key) const {
+    const auto& v = at(key);
+    if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+    if (v.is_number_integer() && v.get<std::int64_t>() >= 0) return static_cast<std::uint64_t>(v.get<std::int64_t>());
+    if (v.is_number_float() && v.get<double>() >= 0 && v.get<double>() < 0x1p64 &&
+        v.get<double>() == std::floor(v.get<double>()))
+      return static_cast<std::uint64_t>(v.get<double>());  // 3.0: a count another writer wrote as a float
+    wrong(key, "a non-negative integer");
   }
   bool boolean(const char* key) const {
     const auto& v = at(key);

@@ -17,7 +17,7 @@ using nlohmann::json;
 
 /// The ConfigError text `f` throws ("" when it throws none).
 template <class F>
-std::string config_error(F f) {
+std::string summary_error(F f) {
   try {
     f();
   } catch (const palp::ConfigError& e) {
@@ -69,14 +69,14 @@ TEST(IdentificationSummaryJson, FreeAirNotFiniteIsNullWithReasonAndReadsBackAsNa
 TEST(IdentificationSummaryJson, FreeAirReaderNamesAMissingKeyANullInstrumentValueAndNoObject) {
   json j = {{"free_air", palp::free_air_json(distinct_free_air())}};
   j["free_air"].erase("m_v_kg");
-  EXPECT_EQ(config_error([&] { palp::free_air_from_json(j); }), "missing key \"free_air.m_v_kg\"");
+  EXPECT_EQ(summary_error([&] { palp::free_air_from_json(j); }), "missing key \"free_air.m_v_kg\"");
   j["free_air"]["m_v_kg"] = nullptr;
   j["free_air"]["m_v_kg_reason"] = "the fit did not converge";
-  EXPECT_EQ(config_error([&] { palp::free_air_from_json(j); }),
+  EXPECT_EQ(summary_error([&] { palp::free_air_from_json(j); }),
             "\"free_air.m_v_kg\" is null (the fit did not converge)");
   j["free_air"]["m_v_kg"] = "0.1";
-  EXPECT_EQ(config_error([&] { palp::free_air_from_json(j); }), "\"free_air.m_v_kg\" is not a number");
-  EXPECT_EQ(config_error([] { palp::free_air_from_json(json::object()); }), "missing key \"free_air\"");
+  EXPECT_EQ(summary_error([&] { palp::free_air_from_json(j); }), "\"free_air.m_v_kg\" is not a number");
+  EXPECT_EQ(summary_error([] { palp::free_air_from_json(json::object()); }), "missing key \"free_air\"");
 }
 
 an::Decomposition distinct_decomposition() {
@@ -115,7 +115,7 @@ TEST(IdentificationSummaryJson, DecompositionWritesLabUnitsAndNoteAndReadsBackEv
 TEST(IdentificationSummaryJson, DecompositionReaderNamesAMissingKey) {
   json j = palp::decomposition_json(distinct_decomposition());
   j.erase("b_o_N_s_per_m_se");
-  EXPECT_EQ(config_error([&] { palp::decomposition_from_json(j); }), "missing key \"b_o_N_s_per_m_se\"");
+  EXPECT_EQ(summary_error([&] { palp::decomposition_from_json(j); }), "missing key \"b_o_N_s_per_m_se\"");
 }
 
 an::Viscoelastic distinct_viscoelastic() {
@@ -161,10 +161,10 @@ TEST(IdentificationSummaryJson, ViscoelasticWritesLinesAndReadsBackEveryField) {
 TEST(IdentificationSummaryJson, ViscoelasticReaderNamesAMissingKeyInALine) {
   json j = {{"viscoelastic", palp::viscoelastic_json(distinct_viscoelastic())}};
   j["viscoelastic"]["lines"][1].erase("k_loss_N_per_mm");
-  EXPECT_EQ(config_error([&] { palp::viscoelastic_from_json(j); }),
+  EXPECT_EQ(summary_error([&] { palp::viscoelastic_from_json(j); }),
             "missing key \"viscoelastic.lines[1].k_loss_N_per_mm\"");
   j["viscoelastic"].erase("lines");
-  EXPECT_EQ(config_error([&] { palp::viscoelastic_from_json(j); }), "missing key \"viscoelastic.lines\"");
+  EXPECT_EQ(summary_error([&] { palp::viscoelastic_from_json(j); }), "missing key \"viscoelastic.lines\"");
 }
 
 TEST(IdentificationSummaryJson, SweepSummaryWritesTheFitInLabUnitsAndNullsWithTheirReasons) {

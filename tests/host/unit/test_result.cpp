@@ -233,6 +233,20 @@ TEST_F(ResultDir, AnIncompleteParameterBlockIsARecordingErrorNamingTheFileAndThe
   }
 }
 
+TEST_F(ResultDir, AnIncompleteRunBlockIsARecordingErrorNamingTheFileAndTheKey) {
+  const fs::path dir = palp::write_result(root_ / "r", synthetic_run());
+  palp::LoadedResult loaded = palp::load_result(dir);
+  EXPECT_EQ(palp::indentation_run_of(loaded).samples_missing, loaded.summary["run"]["samples_missing"].get<std::uint64_t>());
+  loaded.summary["run"].erase("samples_missing");
+  try {
+    palp::indentation_run_of(loaded);
+    FAIL() << "no RecordingError";
+  } catch (const palp::RecordingError& e) {
+    EXPECT_THAT(e.what(), HasSubstr((dir / "result.json").string()));
+    EXPECT_THAT(e.what(), HasSubstr("missing key \"run.samples_missing\""));
+  }
+}
+
 TEST(IndentationSettings, PresetsAreTheIssuesProtocols) {
   const auto one = palp::IndentationSettings::preset(palp::IndentationPreset::one_d);
   const auto two = palp::IndentationSettings::preset(palp::IndentationPreset::two_d);
