@@ -111,6 +111,11 @@ Loaded load(const std::string& file, const an::IndentationParams& p) {
   std::vector<int> contact;
   for (int k : an::loading_branch(l.curve).loading)
     if (l.curve.i_A[k] >= p.contact_current_A) contact.push_back(k);
+  if (contact.empty())  // (no lines to name: e.g. every loading sample below I_c)
+    throw palp::RecordingError(file, 0,
+                               "too few points: no loading sample at i_A >= I_c = " +
+                                   fmt(p.contact_current_A) + " A, the fits need at least " +
+                                   std::to_string(p.min_points));
   if (static_cast<int>(contact.size()) < p.min_points) {
     const auto a = l.line_of(static_cast<std::size_t>(contact.front()));
     const auto b = l.line_of(static_cast<std::size_t>(contact.back()));

@@ -64,6 +64,22 @@ CLI::Validator number_check(bool allow_zero) {
 const CLI::Validator kPositive = number_check(false);
 const CLI::Validator kNonNegative = number_check(true);
 
+void require_finite_numbers(CLI::App& app) {
+  // no name: the option's --help type stays as it was ("FLOAT:FLOAT in [-4 - 4]")
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (!text.empty() && end != nullptr && *end == '\0' && !std::isfinite(v))
+          return "'" + text + "' is not a finite number";
+        return {};  // a finite number, or text CLI11's own conversion refuses
+      },
+      "");
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_name().rfind("FLOAT", 0) == 0) opt->check(finite);
+  for (CLI::App* sub : app.get_subcommands({})) require_finite_numbers(*sub);
+}
+
 int run_guarded(const Context& ctx, const std::function<int()>& action) {
   try {
     return action();

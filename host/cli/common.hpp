@@ -67,6 +67,10 @@ int analyze_map_command(const Context& ctx, const std::string& dir,
 /// check prints its whole double range for a value that is not a number).
 extern const CLI::Validator kPositive;
 extern const CLI::Validator kNonNegative;
+/// Every floating-point option of app and its subcommands refuses NaN and infinities ("--ic-A:
+/// 'nan' is not a finite number", exit 2) before any command runs: a range check alone lets NaN
+/// through, as every comparison with it is false.
+void require_finite_numbers(CLI::App& app);
 
 /// Runs a command's action, turning every SDK error into its exit code and a message on stderr
 /// (and, with --json, an {"error": ...} object on stdout).

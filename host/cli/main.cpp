@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
     }
   };
   add_footer(&app);
+  palpctl::require_finite_numbers(app);
 
   try {
     app.parse(argc, argv);

@@ -2,7 +2,11 @@
 // and the exit codes of usage and connection errors. No device needed except where stated.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -124,6 +128,40 @@ TEST(PalpctlExitCodes, UsageErrorsExitWith2) {
     EXPECT_EQ(r.code, 2) << joined(args) << "\nstdout: " << r.out << "\nstderr: " << r.err;
     EXPECT_FALSE(r.err.empty()) << joined(args);
   }
+}
+
+// issue 17, item 3: NaN passed every range check (every comparison with it is false) and
+// crashed analyze indentation (SIGSEGV), emptied a map, reached the device as a hold current.
+// No device is given: each must be refused while parsing, before anything runs.
+TEST(PalpctlExitCodes, NanAndInfinityAreRefusedNamingTheOptionBeforeAnythingRuns) {
+  const std::string csv = "/nonexistent/indentation.csv";  // never read: parsing refuses first
+  // touch-off checks that its rig file exists before the numbers: any existing file does
+  const std::string rig = (std::filesystem::temp_directory_path() /
+                           ("palpctl-nan-rig-" + std::to_string(::getpid()) + ".json")).string();
+  std::ofstream(rig) << "{}";
+  const struct {
+    Path args;
+    std::string first_line;
+  } cases[] = {
+      {{"analyze", "indentation", "--input", csv, "--ic-A", "nan"},
+       "--ic-A: 'nan' is not a finite number"},
+      {{"analyze", "pressure", "--input", csv, "--kv-N-per-mm", "-inf"},
+       "--kv-N-per-mm: '-inf' is not a number"},  // kNonNegative's own message
+      {{"analyze", "map", "--input", "/nonexistent", "--ic-A", "NaN"},
+       "--ic-A: 'NaN' is not a finite number"},
+      {{"run", "hold", "--current-A", "nan", "--seconds", "1"},
+       "--current-A: 'nan' is not a finite number"},
+      {{"touch-off", "--rig", rig, "--name", "pad", "--p1-mm", "1", "nan", "3",
+        "--p2-mm", "1", "2", "3", "--p3-mm", "1", "2", "3"},
+       "--p1-mm: 'nan' is not a finite number"},
+      {{"--timeout-s", "inf", "info"}, "--timeout-s: 'inf' is not a number"},
+  };
+  for (const auto& c : cases) {
+    const auto r = palpctl(c.args);
+    EXPECT_EQ(r.code, 2) << joined(c.args) << "\nstderr: " << r.err;
+    EXPECT_EQ(r.err.substr(0, r.err.find('\n')), c.first_line) << joined(c.args);
+  }
+  std::filesystem::remove(rig);
 }
 
 TEST(PalpctlExitCodes, UnreachableUriExitsWith3AndOneLine) {
