@@ -14,11 +14,10 @@
 // A member is a double, an optional double (null in the file when absent; with Need::or_null a
 // double too may be null, with `<key>_reason`), an int, a uint32, a size_t or uint64
 // (JsonSource::count reads it exactly), a bool, a string, a Pose (the file's [x_mm, y_mm, z_mm,
-// a_deg, b_deg, c_deg]), a
-// vector of doubles (an array, each element scaled; the Source's numbers(key) reads it), or a
-// protocol message's float (written as its shortest decimal, f32) or uint16. The file
-// value is the SI value times the scale; the reader undoes it with one rounding (from_file). The
-// reader takes a Source, the format's checked access to one JSON
+// a_deg, b_deg, c_deg]), a vector of doubles (an array, each element scaled; the Source's
+// numbers(key) reads it), or a protocol message's float (written as its shortest decimal, f32)
+// or uint16. The file value is the SI value times the scale; the reader undoes it with one
+// rounding (from_file). The reader takes a Source, the format's checked access to one JSON
 // object with its own error messages (JsonSource below for "where: \"key\" must be a number";
 // rig_detail::Fields for the rig and plan files' "file: key: problem" with ranges).
 #pragma once
