@@ -18,7 +18,7 @@ TEST(Schema, HashIsTheCrc32OfTheCanonicalText) {
 
 TEST(Schema, CanonicalTextOpensWithTheVersionAndSpellsFieldsAsSpecified) {
   const std::string text = canonical_schema_text();
-  EXPECT_EQ(text.rfind("palp-protocol 1.0\nenum ErrorCode u16\n value 0 ok\n", 0), 0u);
+  EXPECT_EQ(text.rfind("palp-protocol 1.1\nenum ErrorCode u16\n value 0 ok\n", 0), 0u);
   EXPECT_NE(text.find("message 0x25 LoadContactWatch h2d since 0 reply Ack\n"
                       " field Sf32 hold_current_A since 0 default 0.5 range -4 4 unit \"A\"\n"
                       " field Su32 threshold_counts since 0 default 200 range 1 100000 unit "

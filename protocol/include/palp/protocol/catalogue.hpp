@@ -24,7 +24,7 @@
 #pragma once
 
 #define PALP_PROTOCOL_MAJOR 1
-#define PALP_PROTOCOL_MINOR 0
+#define PALP_PROTOCOL_MINOR 1
 
 // ---------------------------------------------------------------------------------------------
 // Enumerations: PALP_ENUMS lists them (Name, underlying type, doc); PALP_ENUM_<Name> their values.
@@ -57,7 +57,8 @@
   E(stream_too_fast, 10, "The stream configuration exceeds what the device can produce.") \
   E(wrong_direction, 11, "A device-to-host message was sent to the device.")           \
   E(bad_magic, 12, "EnterBootloader without the right magic word.")                   \
-  E(fault_persists, 13, "FaultClear refused: the cause of the fault is still present.")
+  E(fault_persists, 13, "FaultClear refused: the cause of the fault is still present.") \
+  E(hello_required, 14, "No compatible Hello on this connection yet; only identify, version and bootloader are served. Send Hello first.")
 
 #define PALP_ENUM_FaultReason(E)                                                          \
   E(none, 0, "No fault.")                                                                 \
