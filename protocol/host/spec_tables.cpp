@@ -141,7 +141,10 @@ std::string spec_verdict_example() {
          "\n```\n";
 }
 
-std::string spec_example(const std::string& label) {
+// The worked example of golden vector `label`: header, a table of every field's bytes (unless
+// with_fields is false: the SPEC then explains the payload by hand, and a test checks its bytes),
+// CRC and wire bytes.
+std::string spec_example(const std::string& label, bool with_fields) {
   std::string out;
   for_each_golden([&](const std::string& name, const auto& m, u16 seq, u8 flags) {
     if (name != label || !out.empty()) return;
@@ -151,11 +154,13 @@ std::string spec_example(const std::string& label) {
     char line[200];
     std::snprintf(line, sizeof line,
                   "Header: major %u, minor %u, id 0x%02X (`%s`), flags 0x%02X, seq %u, "
-                  "payload_len %zu.\n\n| bytes | field | value |\n|---|---|---|\n",
+                  "payload_len %zu.\n",
                   kProtocolMajor, kProtocolMinor, static_cast<unsigned>(M::kId), M::kName, flags,
                   seq, payload.size());
     out = line;
+    if (with_fields) out += "\n| bytes | field | value |\n|---|---|---|\n";
     m.visit([&](const FieldInfo& f, const auto& value) {
+      if (!with_fields) return;
       std::array<u8, kMaxPayload> bytes;
       Writer w(bytes.data(), bytes.size());
       detail::put(w, value);
@@ -188,7 +193,8 @@ std::string spec_example(const std::string& label) {
 }
 
 std::string spec_block(const std::string& name) {
-  if (name.rfind("example ", 0) == 0) return spec_example(name.substr(8));
+  if (name.rfind("example ", 0) == 0) return spec_example(name.substr(8), true);
+  if (name.rfind("example-frame ", 0) == 0) return spec_example(name.substr(14), false);
   if (name == "verdict-example") return spec_verdict_example();
   if (name == "version") {
     char text[160];

@@ -107,6 +107,11 @@ void for_each_golden(F&& f) {
   contact.armed_count = 12'000;
   contact.sample_index = 50'000;
   f("EventContact.threshold_200", contact, 13, 0);
+
+  Nak before_hello;  // SPEC §6.2: the answer to LoadHold (seq 2) from a host that skipped Hello
+  before_hello.request_id = static_cast<u8>(MessageId::LoadHold);
+  before_hello.error = ErrorCode::hello_required;
+  f("Nak.hello_required", before_hello, 2, kFlagResponse);
 }
 
 }  // namespace palp::proto

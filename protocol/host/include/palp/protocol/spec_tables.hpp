@@ -1,5 +1,6 @@
 // The parts of SPEC.md that are the catalogue itself, generated so the document cannot drift:
-// the message and enum tables, the stream byte-rate table and the canonical schema text.
+// the message and enum tables, the stream byte-rate table, the canonical schema text and the
+// worked examples' headers, CRCs and wire bytes.
 // SPEC.md holds each between "<!-- BEGIN GENERATED name -->" and "<!-- END GENERATED name -->";
 // a test fails when they differ from what this build generates.
 #pragma once
@@ -17,7 +18,9 @@ std::string canonical_schema_text(); ///< "schema"
 std::string spec_verdict_example();
 /// "example <label>": the golden example `label` (examples.hpp) field by field: header, one row
 /// per field with its bytes and value, CRC and wire bytes. "" when there is no such example.
-std::string spec_example(const std::string& label);
+/// "example-frame <label>" (with_fields false): header, CRC and wire bytes only, for an example
+/// whose payload SPEC.md explains by hand (a test checks those bytes against the payload).
+std::string spec_example(const std::string& label, bool with_fields = true);
 
 /// The generated block `name` (one of the above), or "" for an unknown name.
 std::string spec_block(const std::string& name);
