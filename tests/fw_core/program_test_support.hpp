@@ -9,6 +9,7 @@
 
 namespace palp::fw::test {
 
+inline constexpr double kTwoPi = 6.283185307179586476925;
 inline constexpr std::uint32_t kRate = 20000;
 inline constexpr float kDt = 1.0f / 20000.0f;  // one control tick, s
 inline constexpr std::uint64_t kT0 = 1000000;  // ProgramStart tick: programs count from here

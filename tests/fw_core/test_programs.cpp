@@ -21,7 +21,7 @@ using proto::ProgramState;
 
 using namespace palp::fw::test;
 
-constexpr double kTwoPi = 6.283185307179586476925;
+using test::kTwoPi;
 
 float level_A(const proto::LoadRamp& m, std::uint32_t level) {
   const float step = m.stop_A < m.start_A ? -m.step_A : m.step_A;

@@ -9,11 +9,12 @@
 #include "palp/fw/program_kinds.hpp"
 #include "palp/fw/waveform.hpp"
 #include "palp/protocol/multisine.hpp"
+#include "program_test_support.hpp"
 
 namespace palp::fw {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
+using test::kTwoPi;
 constexpr double kTurn = 4294967296.0;
 
 double exact_sin(std::uint32_t phase) { return std::sin(kTwoPi * (phase / kTurn)); }

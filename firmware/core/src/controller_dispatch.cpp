@@ -1,5 +1,9 @@
 // Controller: the host's requests. Every request is answered with its catalogue reply, Ack or
-// Nak (SPEC.md §6.2); every valid request feeds the heartbeat watchdog.
+// Nak (SPEC.md §6.2). Until a compatible Hello only the frozen requests are served; every valid
+// request of an open session feeds the heartbeat watchdog. When several refusals apply, the
+// first in this order wins (SPEC.md §6.3): the frame reader's unknown_message and bad_payload,
+// wrong_direction, the Hello gate (hello_required, incompatible_host), then each request's own
+// checks in the order the handler below makes them.
 #include <type_traits>
 
 #include "palp/fw/controller.hpp"
@@ -41,6 +45,10 @@ void Controller::nak(const proto::FrameHeader& request, proto::ErrorCode error,
   reply(request, n);
 }
 
+std::int32_t Controller::busy_detail() const {
+  return static_cast<std::int32_t>(programs_.running() ? programs_.kind() : proto::ProgramKind::none);
+}
+
 proto::DeviceInfo Controller::device_info() const {
   proto::DeviceInfo d;
   d.protocol_major = identity_.protocol.major;
@@ -58,7 +66,7 @@ proto::DeviceInfo Controller::device_info() const {
   d.max_stream_rate_Hz = Streamer::kMaxRate_Hz;
   d.heartbeat_timeout_ms = params_.heartbeat_timeout_ms;
   d.max_payload = static_cast<std::uint16_t>(proto::kMaxPayload);
-  d.state = host_incompatible_       ? proto::DeviceState::incompatible
+  d.state = session_ == Session::incompatible ? proto::DeviceState::incompatible
             : safety_.tripped()      ? proto::DeviceState::faulted
             : programs_.running()    ? proto::DeviceState::running
                                      : proto::DeviceState::idle;
@@ -104,28 +112,34 @@ CalibrationStatus Controller::load_calibration_block(const std::uint8_t* data, s
 template <class M>
 void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t wd_now_us) {
   using namespace proto;
-  safety_.feed(wd_now_us);
+  if constexpr (std::is_same_v<M, Hello>) {
+    // every Hello judges anew: a compatible one opens the session or keeps it open (programs and
+    // the stream go on), an incompatible one closes it
+    const Verdict v = judge({m.host_major, m.host_minor, m.host_schema_hash}, identity_.protocol);
+    session_ = v.compatibility == Compatibility::incompatible ? Session::incompatible : Session::open;
+  }
+  // only a host in an open session keeps the coil energised: a peer that never said Hello, or an
+  // incompatible one, does not feed the watchdog
+  if (session_ == Session::open) safety_.feed(wd_now_us);
 
   if constexpr (M::kDirection == Direction::D2H) {
     nak(h, ErrorCode::wrong_direction);
     return;
   } else {
-    if (host_incompatible_ && !is_frozen(M::kId) && !std::is_same_v<M, Hello>) {
-      nak(h, ErrorCode::incompatible_host);
+    if (session_ != Session::open && !is_frozen(M::kId)) {
+      nak(h, session_ == Session::none ? ErrorCode::hello_required : ErrorCode::incompatible_host);
       return;
     }
     std::uint8_t field = 255;
 
     if constexpr (std::is_same_v<M, Hello>) {
-      const Verdict v = judge({m.host_major, m.host_minor, m.host_schema_hash}, identity_.protocol);
-      host_incompatible_ = v.compatibility == Compatibility::incompatible;
       reply(h, device_info());
     } else if constexpr (std::is_same_v<M, GetDeviceInfo>) {
       reply(h, device_info());
     } else if constexpr (std::is_same_v<M, EnterBootloader>) {
       if (m.magic != 0x544F4F42u)
         return nak(h, ErrorCode::bad_magic, field_index_of<&EnterBootloader::magic>());
-      if (programs_.running()) return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
+      if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       bootloader_requested_ = true;
       ack(h);
     } else if constexpr (std::is_same_v<M, Ping>) {
@@ -149,8 +163,7 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
         return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::control_rate_Hz>());
       if (m.travel_min_counts >= m.travel_max_counts)
         return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::travel_min_counts>());
-      if (programs_.running() || streamer_.running())
-        return nak(h, ErrorCode::busy, 255, static_cast<std::int32_t>(programs_.kind()));
+      if (programs_.running() || streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       const Params p = fields_as<Params>(m);
       const std::uint32_t old_rate = params_.control_rate_Hz;
       apply_params(p);
@@ -181,17 +194,18 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (is_one_of<M, LoadHold, LoadRamp, LoadSine, LoadSweep, LoadMultisine,
                                    LoadContactWatch>) {
       const ErrorCode e = programs_.load(m, params_.control_rate_Hz, field);
-      if (e != ErrorCode::ok) return nak(h, e, field);
+      if (e != ErrorCode::ok) return nak(h, e, field, e == ErrorCode::busy ? busy_detail() : 0);
       program_rate_Hz_ = params_.control_rate_Hz;
       ack(h);
     } else if constexpr (std::is_same_v<M, ProgramStart>) {
       if (safety_.tripped())
         return nak(h, ErrorCode::faulted, 255, static_cast<std::int32_t>(safety_.fault()));
       // a program is timed in ticks of the rate it was loaded for: after a rate change, reload
-      if (program_rate_Hz_ != params_.control_rate_Hz) return nak(h, ErrorCode::no_program, 255, 1);
+      if (program_rate_Hz_ != 0 && program_rate_Hz_ != params_.control_rate_Hz)
+        return nak(h, ErrorCode::no_program, 255, 1);
       const ErrorCode e = programs_.start(tick_, encoder_.position_counts());
       if (e != ErrorCode::ok)
-        return nak(h, e, 255, e == ErrorCode::busy ? static_cast<std::int32_t>(programs_.kind()) : 0);
+        return nak(h, e, 255, e == ErrorCode::busy ? busy_detail() : 0);
       loop_.reset();
       ack(h);
     } else if constexpr (std::is_same_v<M, ProgramStop>) {
@@ -211,7 +225,7 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (std::is_same_v<M, GetProgramStatus>) {
       reply(h, programs_.status(tick_));
     } else if constexpr (std::is_same_v<M, StreamConfigure>) {
-      if (streamer_.running()) return nak(h, ErrorCode::busy);
+      if (streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       StreamConfig c;
       const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field);
       if (e != ErrorCode::ok) return nak(h, e, field);

@@ -100,6 +100,12 @@ class Controller {
   bool bootloader_requested() const { return bootloader_requested_; }
   void set_identity(const DeviceIdentity& identity) { identity_ = identity; }
   const DeviceIdentity& identity() const { return identity_; }
+  /// Ends the host's session: until its next compatible Hello only the frozen requests are
+  /// served (SPEC.md §6.2). A board calls it when a connection ends or a new one begins
+  /// (palp-sim: every new client); on USB the host re-Hellos instead.
+  void end_session() { session_ = Session::none; }
+  /// True after a compatible Hello, until end_session() or an incompatible Hello.
+  bool session_open() const { return session_ == Session::open; }
   bool faulted() const { return safety_.tripped(); }
   proto::FaultReason fault() const { return safety_.fault(); }
   proto::Health health() const;
@@ -131,6 +137,8 @@ class Controller {
   void ack(const proto::FrameHeader& request);
   void nak(const proto::FrameHeader& request, proto::ErrorCode error,
            std::uint8_t field_index = 255, std::int32_t detail = 0);
+  /// Nak.detail of busy: the running program's kind, none when only the stream runs.
+  std::int32_t busy_detail() const;
   void apply_params(const proto::Params& p);
   void apply_calibration(const CalibrationData& c);
   proto::DeviceInfo device_info() const;
@@ -162,7 +170,10 @@ class Controller {
   bool clamped_ = false;
   bool contact_line_ = false;
   std::uint64_t contact_line_until_tick_ = 0;
-  bool host_incompatible_ = false;
+  /// The Hello gate (SPEC.md §6.2): none until a Hello, open after a compatible one,
+  /// incompatible after an incompatible one.
+  enum class Session : std::uint8_t { none, open, incompatible };
+  Session session_ = Session::none;
   std::uint32_t program_rate_Hz_ = 0;  // control rate the loaded program was timed for
   bool bootloader_requested_ = false;
   std::uint16_t device_seq_ = 0;
