@@ -57,6 +57,7 @@ void Server::step() {
   const bool any_client = device_.has_client() || robot_client();
   const bool can_run = any_client && device_.tx_pending() + pending_.size() < kStallBytes;
   const auto ev = device_.poll(can_run && !sim.holding() ? 0 : (robot_client() ? 1 : 2));
+  if (ev.connected) sim.controller().end_session();  // a new client opens its own session (Hello)
   if (ev.connected || (robot_client() && !had_robot_client && !device_.has_client())) resync();
   const std::vector<std::uint8_t> rx = device_.take_received();
   if (!rx.empty()) sim.host_bytes(rx.data(), rx.size(), wall_us());
