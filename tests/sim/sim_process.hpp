@@ -26,6 +26,7 @@ namespace palp::sim::test {
 
 class SimProcess {
  public:
+  /// connect_device true connects to the device socket and opens a session (hello());
   /// connect_device false leaves the device socket to another client (palp-sim serves one):
   /// the SDK under test. port 0 lets palp-sim pick one; a restart passes the previous port.
   explicit SimProcess(std::vector<std::string> extra_args = {}, bool connect_device = true,
@@ -65,7 +66,10 @@ class SimProcess {
     if (std::sscanf(line.c_str(), "palp-sim listening on tcp://127.0.0.1:%u (device protocol), "
                                   "control on tcp://127.0.0.1:%u", &dp, &cp) == 2) {
       device_port_ = static_cast<std::uint16_t>(dp);
-      if (connect_device) device_ = connect_to(device_port_);
+      if (connect_device) {
+        device_ = connect_to(device_port_);
+        hello();
+      }
       control_ = connect_to(static_cast<std::uint16_t>(cp));
       connect_device_ = connect_device;
     }
@@ -107,6 +111,21 @@ class SimProcess {
       if (n <= 0) return;
       off += static_cast<std::size_t>(n);
     }
+  }
+  /// Closes the device socket, waits until palp-sim has let the client go, and connects again
+  /// without a Hello (a new client: a new session, SPEC.md §6.2). False when it cannot.
+  bool reconnect_without_hello() {
+    if (device_ >= 0) ::close(device_);
+    device_ = -1;
+    for (int k = 0; k < 500 && control("status").find(" client=0 ") == std::string::npos; ++k)
+      ::usleep(10'000);
+    device_ = connect_to(device_port_);
+    return device_ >= 0;
+  }
+  /// Opens a session on the device socket (Hello, seq 0; the constructor does it when it
+  /// connects): palp-sim serves nothing but identify and bootloader before it.
+  void hello() {
+    send(proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "test"}, 0);
   }
   template <class M>
   void send(const M& m, proto::u16 seq) {

@@ -23,6 +23,28 @@ TEST(PalpSim, AnswersTheHandshakeOverTcpAsAPalpSimDevice) {
   EXPECT_NE(d.capabilities & (1u << static_cast<unsigned>(Capability::simulated)), 0u);
 }
 
+// SPEC.md §6.2: every connection is a new session; before its Hello only identify is served.
+TEST(PalpSim, ANewClientIsRefusedHelloRequiredUntilItsOwnHello) {
+  SimProcess sim;
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  sim.send(GetStatus{}, 1);
+  Status st;
+  ASSERT_TRUE(sim.await(1, st));  // the first client said Hello (SimProcess does)
+  ASSERT_TRUE(sim.reconnect_without_hello());
+  sim.send(LoadHold{0.3f, 0.0f}, 2);
+  Nak n;
+  ASSERT_TRUE(sim.await(2, n));
+  EXPECT_EQ(n.error, ErrorCode::hello_required);
+  EXPECT_EQ(n.request_id, static_cast<u8>(MessageId::LoadHold));
+  sim.send(GetDeviceInfo{}, 3);
+  DeviceInfo d;
+  ASSERT_TRUE(sim.await(3, d));
+  sim.hello();
+  sim.send(GetStatus{}, 4);
+  ASSERT_TRUE(sim.await(4, st));
+  EXPECT_EQ(st.state, DeviceState::idle);  // nothing was loaded or started
+}
+
 TEST(PalpSim, MalformedBytesNeitherCrashNorWedgeIt) {
   SimProcess sim;
   ASSERT_TRUE(sim.ok()) << sim.banner();

@@ -99,6 +99,7 @@ TEST(RobotWorld, AStopWriteIsTheReactionToAHeldContactAndLandsTheLatencyLater) {
     b.resize(proto::encode_message(m, seq, 0, b.data(), b.size()));
     w.sim->host_bytes(b.data(), b.size(), 0);
   };
+  send(proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "test"}, 0);
   // free air: 0.7 A pushes the coil forward, 200 um fire the watch, the event holds time
   send(proto::LoadContactWatch{0.7f, 200, 0.0f}, 1);
   send(proto::ProgramStart{}, 2);

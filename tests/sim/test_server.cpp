@@ -39,6 +39,10 @@ struct Client {
     w.resize(proto::encode_message(m, seq, 0, w.data(), w.size()));
     send_text(std::string(w.begin(), w.end()));
   }
+  /// Opens the session (the device serves nothing else before it): Hello, seq 0.
+  void hello() const {
+    send(proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "test"}, 0);
+  }
   /// What has arrived, without waiting.
   std::string take() const {
     std::string got;
@@ -96,6 +100,7 @@ TEST(SimServer, AHostThatDoesNotDrainStopsVirtualTimeAndNothingIsDropped) {
   auto s = make_server(0);
   Client host(s->device().port(), 4096);
   ASSERT_GE(host.fd, 0);
+  host.hello();
   host.send(proto::StreamConfigure{proto::kAllChannels, 1, 40}, 1);
   host.send(proto::StreamStart{}, 2);
   // the host reads nothing: the socket buffers and the server's queue fill, then time stops
@@ -126,6 +131,7 @@ TEST(SimServer, AContactEventHoldsVirtualTimeUntilTheHostsNextFrame) {
   proto::LoadContactWatch w;
   w.hold_current_A = 0.5f;
   w.threshold_counts = 500;
+  host.hello();
   host.send(w, 1);
   host.send(proto::ProgramStart{}, 2);
   Simulation& sim = s->instrument().simulation();

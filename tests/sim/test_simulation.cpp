@@ -15,17 +15,21 @@ namespace {
 
 using namespace palp::proto;
 
-std::unique_ptr<Simulation> make(std::uint64_t seed = 1) {
-  fw::DeviceIdentity id;
-  id.board = "palp-sim";
-  return std::make_unique<Simulation>(id, std::make_unique<ModelPlant>("none", seed));
-}
-
 template <class M>
 void send(Simulation& s, const M& m, u16 seq, std::uint64_t wall_us) {
   std::vector<u8> w(kMaxWireFrame);
   w.resize(encode_message(m, seq, 0, w.data(), w.size()));
   s.host_bytes(w.data(), w.size(), wall_us);
+}
+
+/// A simulation with a host session open (Hello sent at wall time 0, its DeviceInfo dropped).
+std::unique_ptr<Simulation> make(std::uint64_t seed = 1) {
+  fw::DeviceIdentity id;
+  id.board = "palp-sim";
+  auto s = std::make_unique<Simulation>(id, std::make_unique<ModelPlant>("none", seed));
+  send(*s, Hello{kProtocolMajor, kProtocolMinor, kSchemaHash, "test"}, 0, 0);
+  s->take_device_bytes();
+  return s;
 }
 
 struct HostView {
