@@ -266,6 +266,40 @@ TEST(NakFields, BusyNamesTheRunningProgramOrNoneWhenOnlyTheStreamRuns) {
   }
 }
 
+TEST(RefusalPrecedence, FaultedRefusesOnlyProgramStart) {
+  Bench b;
+  b.send(LoadHold{0.3f, 0.0f}, 1);
+  b.send(ProgramStart{}, 2);
+  b.run_ticks(10);
+  b.wd_us_ += 2'000'000;
+  b.run_ticks(10);
+  ASSERT_TRUE(b.c_.faulted());
+  b.send(GetCalibration{}, 3);
+  b.pump();
+  const SetCalibration same = fields_as<SetCalibration>(b.last<Calibration>());
+  b.clear();
+  b.send(SetParams{}, 3);
+  b.send(LoadHold{0.2f, 0.0f}, 4);
+  b.send(same, 5);
+  b.send(StreamConfigure{}, 6);
+  b.send(StreamStart{}, 7);
+  b.send(StreamStop{}, 8);
+  b.send(ProgramStart{}, 9);
+  b.pump();
+  const auto naks = b.all<Nak>();
+  ASSERT_EQ(naks.size(), 1u);
+  EXPECT_EQ(naks[0].request_id, static_cast<u8>(MessageId::ProgramStart));
+  EXPECT_EQ(naks[0].error, ErrorCode::faulted);
+}
+
+TEST(RefusalPrecedence, StreamConfigureOutOfRangeComesBeforeStreamTooFast) {
+  Bench b;
+  b.send(StreamConfigure{kAllChannels, 1, 960}, 1);  // too fast, and 960 x 24 bytes do not fit
+  b.pump();
+  EXPECT_EQ(b.last<Nak>().error, ErrorCode::out_of_range);
+  EXPECT_EQ(b.last<Nak>().field_index, 2);  // batch_samples
+}
+
 TEST(NakFields, BadPayloadNamesNoFieldAndStreamTooFastNamesDecimation) {
   Bench b;
   std::vector<u8> w(kMaxWireFrame);
@@ -332,6 +366,16 @@ TEST(HealthSnapshot, CountsNeitherItsOwnRequestNorItsReply) {
   EXPECT_EQ(h[0].frames_tx, 1u);  // its DeviceInfo
   EXPECT_EQ(h[1].frames_rx, 2u);  // and the first GetHealth
   EXPECT_EQ(h[1].frames_tx, 2u);  // and its Health
+
+  // a frame whose message does not decode counts under its reason, not in frames_rx
+  std::vector<u8> w(kMaxWireFrame);
+  w.resize(encode_frame(FrameHeader{kProtocolMajor, kProtocolMinor, 0xEE, 0, 4, 0}, nullptr, 0,
+                        w.data(), w.size()));
+  b.c_.receive(w.data(), w.size(), b.wd_us_);
+  b.send(GetHealth{}, 5);
+  b.pump();
+  EXPECT_EQ(b.last<Health>().frames_rx, 3u);  // Hello and two GetHealth
+  EXPECT_EQ(b.last<Health>().rx_unknown_message, 1u);
 }
 
 // SPEC.md §10.2 FaultReason: the detail each reason the core latches carries in EventFault.

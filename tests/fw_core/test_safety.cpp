@@ -217,7 +217,7 @@ TEST(Safety, SecondFaultInTheSameLatchDoesNotOverwriteTheFirst) {
   (void)s.check(in);
   ASSERT_EQ(s.fault(), FaultReason::travel_limit);
   in.i_measured_A = 4.0f;
-  for (int k = 0; k < 40; ++k) (void)s.check(in);
+  for (int k = 0; k < 40; ++k) EXPECT_EQ(s.check(in).new_fault, FaultReason::none);  // not reported
   EXPECT_EQ(s.fault(), FaultReason::travel_limit);
   EXPECT_EQ(s.fault_detail(), 30000);
 }
@@ -228,6 +228,7 @@ TEST(Safety, NonFiniteRequestTripsInternalAtOnce) {
   EXPECT_TRUE(v.tripped);
   EXPECT_EQ(v.new_fault, FaultReason::internal);
   EXPECT_EQ(v.i_set_A, 0.0f);
+  EXPECT_EQ(s.fault_detail(), 1);  // 1: the request, 2: the measurement (SPEC.md §6.2)
 }
 
 TEST(Safety, ConfigureAppliesANewClampAndKeepsTheLatch) {

@@ -231,7 +231,7 @@
   F(S, u8, 1, request_id, 0, 0, NOLIM, NOLIM, "", "Message id of the refused request.")     \
   F(E, ErrorCode, 1, error, 0, ErrorCode::ok, NOLIM, NOLIM, "", "Why.")                      \
   F(S, u8, 1, field_index, 0, 255, NOLIM, NOLIM, "", "Zero-based index of the offending field, 255 if none.") \
-  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "For faulted: the latched FaultReason; for busy: the running ProgramKind; otherwise 0.")
+  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "For faulted and fault_persists: the latched FaultReason; for busy: the running ProgramKind (none when only the stream runs); for no_program: 1 when the loaded program was timed for another control rate; otherwise 0 (SPEC.md 6.3).")
 
 // --- session, time, status -------------------------------------------------------------------
 #define PALP_FIELDS_Ping(F)                                                           \
@@ -404,7 +404,7 @@
 #define PALP_FIELDS_EventFault(F)                                                                 \
   F(S, u64, 1, time_us, 0, 0, NOLIM, NOLIM, "us", "Device time of the trip.")                     \
   F(E, FaultReason, 1, reason, 0, FaultReason::none, NOLIM, NOLIM, "", "Why.")                    \
-  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "Reason-specific: the encoder count, current in 0.1 mA, or milliseconds late.")
+  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "Reason-specific (SPEC.md 6.2, Faults): the encoder count, the current in 0.1 mA, milliseconds late, or which check failed.")
 
 #define PALP_FIELDS_EventContact(F)                                                               \
   F(S, u64, 1, time_us, 0, 0, NOLIM, NOLIM, "us", "Device time of the tick that fired.")          \
