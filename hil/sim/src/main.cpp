@@ -165,7 +165,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::Error& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "palp-sim: %s\n", e.what());
+    const std::string what = e.what();  // most messages name palp-sim already
+    std::fprintf(stderr, "%s%s\n", what.rfind("palp-sim: ", 0) == 0 ? "" : "palp-sim: ", what.c_str());
     return 1;
   }
 }

@@ -7,8 +7,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <ctime>
 #include <stdexcept>
 
 namespace palp::sim {
@@ -18,7 +20,28 @@ namespace {
 constexpr std::size_t kMbapHeader = 7;  // transaction id, protocol id, length, unit id
 constexpr int kMappedRegisters = rb::Command::kAddress + rb::Command::kLength;
 
+constexpr std::size_t kRxLimit = 4096;   // unparsed bytes kept
+constexpr std::size_t kMaxReplies = 64;  // replies waiting (a reply delay) before reading stops
+
 std::uint16_t be16(const std::uint8_t* p) { return static_cast<std::uint16_t>((p[0] << 8) | p[1]); }
+
+std::string peer_of(int fd) {
+  sockaddr_in a{};
+  socklen_t len = sizeof a;
+  if (::getpeername(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) return "an unknown peer";
+  char ip[INET_ADDRSTRLEN] = "?";
+  ::inet_ntop(AF_INET, &a.sin_addr, ip, sizeof ip);
+  return std::string(ip) + ":" + std::to_string(ntohs(a.sin_port));
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
 
 }  // namespace
 
@@ -57,6 +80,15 @@ std::string ModbusServer::address() const {
 void ModbusServer::poll(ModbusHandler& handler, std::uint64_t wall_us) {
   accept_clients(handler, wall_us);
   if (client_ >= 0 && receive(handler, wall_us) && !send_due(wall_us)) close_client(handler);
+  if (client_ < 0) return;
+  // the one slot is not held by a client that does not talk, or stops mid-request
+  const bool partial_stuck = partial_since_us_ != 0 && wall_us > partial_since_us_ &&
+                             wall_us - partial_since_us_ > partial_us_;
+  const bool idle = wall_us > last_request_us_ && wall_us - last_request_us_ > idle_us_;
+  if (partial_stuck || idle) {
+    ++counters_.timeouts;
+    close_client(handler);
+  }
 }
 
 void ModbusServer::accept_clients(ModbusHandler& handler, std::uint64_t wall_us) {
@@ -65,13 +97,20 @@ void ModbusServer::accept_clients(ModbusHandler& handler, std::uint64_t wall_us)
     if (fd < 0) return;
     // a client that closed and reconnected at once is no second client: see its close first
     if (client_ >= 0) receive(handler, wall_us);
-    if (client_ >= 0) {  // one client at a time: close the second at once
+    if (client_ >= 0) {  // one client at a time: close the second at once, saying why
       ++counters_.refused;
+      const std::string busy = "palp-sim: busy: another host is connected from " + client_from_ +
+                               " since " + client_since_ + "\n";
+      [[maybe_unused]] const auto w = ::send(fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
       ::close(fd);
       continue;
     }
     ++counters_.connections;
     client_ = fd;
+    client_from_ = peer_of(fd);
+    client_since_ = utc_now();
+    last_request_us_ = wall_us;
+    partial_since_us_ = 0;
     rx_.clear();
     replies_.clear();
     modbus_set_socket(ctx_, fd);
@@ -80,8 +119,10 @@ void ModbusServer::accept_clients(ModbusHandler& handler, std::uint64_t wall_us)
 
 bool ModbusServer::receive(ModbusHandler& handler, std::uint64_t wall_us) {
   std::uint8_t buf[1024];
-  for (;;) {
-    const ssize_t n = ::recv(client_, buf, sizeof buf, MSG_DONTWAIT);
+  // bounded: at most kRxLimit unparsed bytes and kMaxReplies waiting replies; the rest of a
+  // flood waits in the socket for the next poll
+  while (rx_.size() < kRxLimit && replies_.size() < kMaxReplies) {
+    const ssize_t n = ::recv(client_, buf, std::min(sizeof buf, kRxLimit - rx_.size()), MSG_DONTWAIT);
     if (n > 0) {
       rx_.insert(rx_.end(), buf, buf + n);
       continue;
@@ -105,9 +146,12 @@ bool ModbusServer::receive(ModbusHandler& handler, std::uint64_t wall_us) {
     const std::size_t total = 6u + length;
     if (rx_.size() - at < total) break;
     serve(handler, std::vector<std::uint8_t>(h, h + total), wall_us);
+    last_request_us_ = wall_us;
     at += total;
   }
   rx_.erase(rx_.begin(), rx_.begin() + static_cast<std::ptrdiff_t>(at));
+  if (rx_.empty()) partial_since_us_ = 0;
+  else if (partial_since_us_ == 0 || at > 0) partial_since_us_ = wall_us | 1;  // never 0: none
   return true;
 }
 

@@ -2,10 +2,15 @@
 // built on libmodbus, single-threaded and non-blocking: palp-sim's main loop calls poll().
 //
 //   - Listens on one address (loopback by default) and port (0: an ephemeral one).
-//   - ONE client: a second connection is accepted and closed at once, without an answer.
+//   - ONE client: a second connection is accepted, told "palp-sim: busy: another host is
+//     connected from ADDR since T" in one text line (no Modbus frame: a client reports a bad
+//     reply or the close; a person with nc reads why) and closed.
 //   - Requests are cut out of the byte stream here (MBAP header: protocol 0, length 2..254);
-//     a partial request simply waits for its remaining bytes, so it never blocks the
-//     simulator. A malformed header closes the connection.
+//     a partial request waits for its remaining bytes, so it never blocks the simulator, but
+//     at most kPartialMs; a client with no whole request for kIdleMs is closed too (the SDK's
+//     robot client writes its heartbeat every watchdog / 4, at most 2.5 s). At most 4 KiB of
+//     unparsed bytes and 64 unsent replies are kept: beyond, the socket is not read.
+//     A malformed header closes the connection.
 //   - FC3, FC6 and FC16 go to the handler, which validates them (§3) and answers with the
 //     exception to send; other function codes get exception 01, and a PDU whose length or
 //     byte count does not fit its function code gets 03. Only then does libmodbus build the
@@ -59,11 +64,21 @@ class ModbusServer {
   bool has_client() const { return client_ >= 0; }
   /// Closes the client's connection now (the robot-drop knob).
   void drop_client(ModbusHandler& handler);
+  /// No whole request for this long (wall time) closes the client, and a partial request left
+  /// unfinished for kPartialMs.
+  static constexpr std::uint64_t kIdleMs = 30'000;
+  static constexpr std::uint64_t kPartialMs = 2'000;
+  /// Tests shorten them.
+  void set_timeouts_ms(std::uint64_t idle_ms, std::uint64_t partial_ms) {
+    idle_us_ = idle_ms * 1000;
+    partial_us_ = partial_ms * 1000;
+  }
   void set_reply_delay_ms(double ms) { reply_delay_us_ = ms > 0 ? static_cast<std::uint64_t>(ms * 1e3) : 0; }
   double reply_delay_ms() const { return static_cast<double>(reply_delay_us_) / 1e3; }
 
   struct Counters {
     std::uint64_t connections = 0, refused = 0, requests = 0, exceptions = 0, malformed = 0;
+    std::uint64_t timeouts = 0;  ///< clients closed idle or with a partial request
   };
   const Counters& counters() const { return counters_; }
 
@@ -90,6 +105,10 @@ class ModbusServer {
   std::vector<std::uint8_t> rx_;
   std::deque<Reply> replies_;
   std::uint64_t reply_delay_us_ = 0;
+  std::uint64_t idle_us_ = kIdleMs * 1000, partial_us_ = kPartialMs * 1000;
+  std::uint64_t last_request_us_ = 0;   // the client's connect or last whole request
+  std::uint64_t partial_since_us_ = 0;  // when the unparsed bytes began (0: none)
+  std::string client_from_, client_since_;
   Counters counters_;
 };
 
