@@ -102,6 +102,14 @@ class SimProcess {
     }
   }
   const std::string& banner() const { return banner_; }
+  pid_t pid() const { return pid_; }
+  /// Connects the device socket now (left to another client at construction, now gone).
+  bool connect_device_now() {
+    if (device_ < 0) device_ = connect_to(device_port_);
+    return device_ >= 0;
+  }
+  /// The control channel's socket, for tests that write it raw.
+  int control_fd() const { return control_; }
   bool alive() const { return pid_ > 0 && ::waitpid(pid_, nullptr, WNOHANG) == 0; }
 
   void send_bytes(const std::vector<proto::u8>& bytes) {

@@ -96,7 +96,12 @@ TEST(PalpSim, AHostThatDoesNotReadStallsVirtualTimeAndLosesNoSample) {
   ASSERT_TRUE(sim.ok()) << sim.banner();
   sim.send(StreamConfigure{kAllChannels, 2, 40}, 1);
   sim.send(StreamStart{}, 2);
-  ::usleep(700'000);  // the host reads nothing for 0.7 s of wall time
+  // the host reads nothing for 0.7 s of wall time, but is alive: a heartbeat every 0.1 s (a
+  // host silent for the heartbeat timeout is lost, and its frames are dropped: hil/README.md)
+  for (u16 k = 0; k < 7; ++k) {
+    sim.send(Heartbeat{}, static_cast<u16>(100 + k));
+    ::usleep(100'000);
+  }
   // now drain until the device time of a Status shows the stream kept going; count the samples
   std::uint32_t expected = 0, samples = 0, gaps = 0;
   Status st;

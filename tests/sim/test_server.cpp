@@ -16,69 +16,17 @@
 #include "palp/protocol/frame.hpp"
 #include "palp/protocol/stream.hpp"
 #include "palp/sim/server.hpp"
-#include "loopback.hpp"
+#include "server_client.hpp"
 
 namespace palp::sim {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
-
-/// A blocking loopback client socket.
-struct Client {
-  /// rcvbuf_bytes > 0: a small receive buffer, so a host that does not read backs up soon
-  explicit Client(std::uint16_t port, int rcvbuf_bytes = 0)
-      : fd(test::connect_loopback(port, rcvbuf_bytes)) {}
-  ~Client() {
-    if (fd >= 0) ::close(fd);
-  }
-  void send_text(const std::string& s) const { ASSERT_EQ(::write(fd, s.data(), s.size()), static_cast<ssize_t>(s.size())); }
-  template <class M>
-  void send(const M& m, proto::u16 seq) const {
-    std::vector<proto::u8> w(proto::kMaxWireFrame);
-    w.resize(proto::encode_message(m, seq, 0, w.data(), w.size()));
-    send_text(std::string(w.begin(), w.end()));
-  }
-  /// Opens the session (the device serves nothing else before it): Hello, seq 0.
-  void hello() const {
-    send(proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "test"}, 0);
-  }
-  /// What has arrived, without waiting.
-  std::string take() const {
-    std::string got;
-    pollfd p{fd, POLLIN, 0};
-    char buf[65536];
-    while (::poll(&p, 1, 0) == 1) {
-      const ssize_t n = ::read(fd, buf, sizeof buf);
-      if (n <= 0) break;
-      got.append(buf, static_cast<std::size_t>(n));
-    }
-    return got;
-  }
-  int fd;
-};
-
-std::unique_ptr<Server> make_server(double pace, InstrumentOptions o = {}) {
-  return std::make_unique<Server>(std::make_unique<Instrument>(std::move(o)),
-                                  ByteServer::tcp("127.0.0.1", 0), ByteServer::tcp("127.0.0.1", 0),
-                                  nullptr, pace);
-}
-
-std::uint16_t control_port(const Server& s) {
-  const std::string b = s.banner();
-  return static_cast<std::uint16_t>(std::stoul(b.substr(b.rfind(':') + 1)));
-}
-
-/// Steps until pred() or the wall time is up.
-template <class Pred>
-bool step_until(Server& s, Pred&& pred, std::chrono::milliseconds within = 5s) {
-  const auto end = Clock::now() + within;
-  while (!pred()) {
-    if (Clock::now() > end) return false;
-    s.step();
-  }
-  return true;
-}
+using test::Client;
+using test::make_server;
+using test::control_port;
+using test::step_until;
+using Clock = std::chrono::steady_clock;
 
 TEST(SimServer, AtHalfRealTimeVirtualTimeNeverRunsAheadOfHalfTheWallTime) {
   auto s = make_server(0.5);
@@ -101,6 +49,11 @@ TEST(SimServer, AHostThatDoesNotDrainStopsVirtualTimeAndNothingIsDropped) {
   Client host(s->device().port(), 4096);
   ASSERT_GE(host.fd, 0);
   host.hello();
+  // a heartbeat timeout beyond the test: a host silent for it is lost, and no longer stalls
+  // (test_server_host_loss.cpp)
+  proto::SetParams p;
+  p.heartbeat_timeout_ms = 10000;
+  host.send(p, 5);
   host.send(proto::StreamConfigure{proto::kAllChannels, 1, 40}, 1);
   host.send(proto::StreamStart{}, 2);
   // the host reads nothing: the socket buffers and the server's queue fill, then time stops
@@ -128,10 +81,13 @@ TEST(SimServer, AContactEventHoldsVirtualTimeUntilTheHostsNextFrame) {
   auto s = make_server(0, {.phantom = "solid_1d", .mount_mm = {27, 0, -25}, .hold_timeout_ms = 60e3});
   Client host(s->device().port());
   ASSERT_GE(host.fd, 0);
+  proto::SetParams p;  // a host silent for the heartbeat timeout ends a hold: beyond the test
+  p.heartbeat_timeout_ms = 10000;
+  host.hello();
+  host.send(p, 5);
   proto::LoadContactWatch w;
   w.hold_current_A = 0.5f;
   w.threshold_counts = 500;
-  host.hello();
   host.send(w, 1);
   host.send(proto::ProgramStart{}, 2);
   Simulation& sim = s->instrument().simulation();

@@ -84,6 +84,11 @@ std::string Instrument::status(Serving& serving) {
                 static_cast<unsigned long long>(c.frames_corrupted),
                 static_cast<unsigned long long>(c.holds));
   std::string line = buf;
+  // what a host-loss test measures: the coil's true current and the latched fault
+  std::snprintf(buf, sizeof buf, " coil_A=%.6f fault=%s", model().coil_current_A(),
+                proto::enum_name(sim_->controller().fault()));
+  line += buf;
+  line += serving.status_fields();
   ModbusServer* server = serving.robot_server();
   if (world_ && server) {
     const auto& s = world_->bridge().status();

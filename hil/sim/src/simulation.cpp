@@ -10,11 +10,13 @@ Simulation::Simulation(const fw::DeviceIdentity& identity, std::unique_ptr<Plant
     : controller_(identity), plant_(std::move(plant)), options_(options) {}
 
 double Simulation::virtual_s() const {
-  return static_cast<double>(controller_.ticks()) / controller_.control_rate_Hz();
+  return s_at_rate_ + static_cast<double>(controller_.ticks() - ticks_at_rate_) /
+                          controller_.control_rate_Hz();
 }
 
 void Simulation::host_bytes(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us) {
   last_wall_us_ = wall_us;
+  host_wall_us_ = wall_us;
   if (hold_.active || hold_.releasing) {
     hold_.pending.insert(hold_.pending.end(), data, data + size);
     if (hold_.active) {
@@ -43,14 +45,24 @@ std::uint64_t Simulation::host_reaction(std::uint64_t wall_us) {
 }
 
 void Simulation::deliver(const std::uint8_t* data, std::size_t size, std::uint64_t wall_us) {
+  const std::uint32_t rate = controller_.control_rate_Hz();
   controller_.receive(data, size, wall_us);
+  if (controller_.control_rate_Hz() != rate) {  // SetParams: the ticks so far at the old rate
+    s_at_rate_ += static_cast<double>(controller_.ticks() - ticks_at_rate_) / rate;
+    ticks_at_rate_ = controller_.ticks();
+  }
   collect_device_output();
 }
 
 std::uint32_t Simulation::run(std::uint32_t max_ticks, std::uint64_t wall_us) {
   last_wall_us_ = wall_us;
   if (hold_.active) {
-    if (static_cast<double>(wall_us - hold_.since_wall_us) < options_.hold_timeout_ms * 1e3)
+    // a host silent for the heartbeat timeout will not react: the core's watchdog would trip
+    // on hardware, so held virtual time goes on for it to do so
+    const bool host_silent = wall_us > host_wall_us_ && wall_us - host_wall_us_ >
+                             std::uint64_t{controller_.params().heartbeat_timeout_ms} * 1000u;
+    if (static_cast<double>(wall_us - hold_.since_wall_us) < options_.hold_timeout_ms * 1e3 &&
+        !host_silent)
       return 0;
     hold_.active = false;  // the host did not react in time: go on
     ++counters_.hold_timeouts;

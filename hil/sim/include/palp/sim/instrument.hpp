@@ -44,6 +44,8 @@ class Serving {
   virtual bool device_client() const = 0;
   /// The robot bridge's Modbus server, null when there is none.
   virtual ModbusServer* robot_server() = 0;
+  /// Fields the serving side adds to the status line (" name=value ...", or empty).
+  virtual std::string status_fields() const { return {}; }
 };
 
 class Instrument {

@@ -5,9 +5,18 @@
 //   - polls the robot's Modbus socket (every 0.2 ms of wall time at most) and the device socket,
 //     hands the host's bytes to the simulation and answers control lines;
 //   - runs up to 1 ms of virtual time, no further than wall time allows at the pace (0: as fast
-//     as possible), and only while a client is connected and the host has drained the device
-//     bytes (it stalls rather than drops; a held contact event holds virtual time too);
+//     as possible); a held contact event holds virtual time;
+//   - hands the host's bytes to the simulation after that tick ran at this step's wall time, so
+//     the heartbeat watchdog's overdue check always comes before new bytes feed it;
 //   - sends the device bytes in order, keeping what the socket refused for the next step.
+//
+// Host loss (hil/README.md "Host loss"): with no client, virtual time runs at real time,
+// sleeping between steps, whatever the pace, so the core's heartbeat watchdog (wall clock) trips
+// as on hardware. A host that does not drain the device bytes stalls virtual time (nothing is
+// dropped) while it still sends something at least every heartbeat timeout; a host silent for
+// longer is lost: virtual time runs on at real time and the device frames it does not take are
+// dropped whole and counted (status: host_dropped_frames), as a device whose USB endpoint is
+// not read loses stream data.
 //
 // palp-sim's main() parses the options, builds the Server and calls run(); tests call step().
 #pragma once
@@ -51,14 +60,31 @@ class Server final : public Serving {
   bool device_client() const override { return device_.has_client(); }
   ModbusServer* robot_server() override { return robot_.get(); }
 
-  /// Device bytes the host has not drained beyond which virtual time stops.
+  std::string status_fields() const override;
+
+  /// Device bytes the host has not drained beyond which virtual time stops (for a host that is
+  /// not lost, see above).
   static constexpr std::size_t kStallBytes = 64 * 1024;
+  /// The device port's idle rule (set by the constructor; device().set_idle_rule() changes it):
+  /// a client that has sent no complete frame for 30 s, or left one unfinished for 5 s, loses
+  /// the one slot. The SDK never comes near: an open Probe sends a Heartbeat every heartbeat
+  /// timeout / 5 (at most 2 s) and a Ping every 0.2 s, each one whole frame in one write.
+  static constexpr ByteServer::IdleRule kDeviceIdle{30'000, 5'000, 0};
+  /// Control-channel line limit: a longer line is discarded up to its newline, with one error.
+  static constexpr std::size_t kControlLineBytes = 4096;
+
+  /// Device frames dropped because a lost host did not take them.
+  std::uint64_t host_dropped_frames() const { return dropped_frames_; }
+  /// True while no client is connected, or the device client has neither drained nor sent a
+  /// byte for longer than the heartbeat timeout: virtual time runs at real time.
+  bool host_lost() const { return lost_; }
 
  private:
   using Clock = std::chrono::steady_clock;
   std::uint64_t wall_us() const;
   bool robot_client() const { return robot_ && robot_->has_client(); }
-  void resync();
+  void resync(double effective_pace);
+  std::uint32_t paced_chunk(double effective_pace, std::uint32_t cap_ticks);
   void serve_control();
   void reply(const std::string& line);
 
@@ -69,9 +95,15 @@ class Server final : public Serving {
   double pace_;
   Clock::time_point t0_ = Clock::now();
   std::uint64_t virtual_at_sync_ = 0;       // the pace counts virtual time from here ...
-  Clock::time_point wall_at_sync_ = t0_;    // ... against wall time from here
+  Clock::time_point wall_at_sync_ = t0_;    // ... against wall time from here ...
+  std::uint32_t rate_at_sync_ = 0;          // ... at this control rate ...
+  double pace_at_sync_ = -1;                // ... and this pace (1 while the host is lost)
+  Clock::time_point host_heard_ = t0_;      // the device client's last bytes (or its connect)
+  bool lost_ = true;
+  std::uint64_t dropped_frames_ = 0;
   std::uint64_t last_robot_poll_us_ = 0;
   std::string control_line_;
+  bool discarding_line_ = false;            // inside an overlong control line
   std::vector<std::uint8_t> pending_;       // device bytes the socket has not taken yet
 };
 

@@ -53,13 +53,15 @@ class Simulation {
   std::uint64_t host_reaction(std::uint64_t wall_us);
 
   /// Runs up to max_ticks control ticks unless held; returns how many ran. The caller stops
-  /// calling (stalls) while the host has not drained the device bytes.
+  /// calling (stalls) while the host has not drained the device bytes. A hold ends after
+  /// hold_timeout_ms, or once the host has sent nothing for the core's heartbeat timeout (it
+  /// will not react; the watchdog must get its ticks to trip).
   std::uint32_t run(std::uint32_t max_ticks, std::uint64_t wall_us);
 
   /// Device bytes produced so far (after fault injection); takes them.
   std::vector<std::uint8_t> take_device_bytes();
 
-  /// Virtual time.
+  /// Virtual time: ticks, and seconds (each tick at the control rate it ran at).
   std::uint64_t ticks() const { return controller_.ticks(); }
   double virtual_s() const;
   bool holding() const { return hold_.active; }
@@ -87,6 +89,9 @@ class Simulation {
   std::unique_ptr<PlantLink> plant_;
   SimulationOptions options_;
   std::uint64_t last_wall_us_ = 0;
+  std::uint64_t host_wall_us_ = 0;     // wall time of the host's last bytes
+  double s_at_rate_ = 0;               // virtual seconds before the last control-rate change
+  std::uint64_t ticks_at_rate_ = 0;    // ... and the tick it happened at
   bool contact_line_ = false;
   std::vector<std::uint8_t> frame_;    // device bytes of the frame being cut out
   std::vector<std::uint8_t> out_;      // device bytes ready for the host
