@@ -85,7 +85,9 @@ std::string nak_text(const char* request, const proto::FieldInfo* fields, std::s
   }
   if (nak.error == proto::ErrorCode::faulted || nak.error == proto::ErrorCode::fault_persists)
     s += "; latched fault: " + enum_text(static_cast<proto::FaultReason>(nak.detail));
-  if (nak.error == proto::ErrorCode::busy)
+  // detail names the running program; 0 (none) comes with a busy that is no program's (the
+  // stream already running refuses StreamConfigure and SetParams): "running: none" was wrong
+  if (nak.error == proto::ErrorCode::busy && nak.detail != 0)
     s += "; running: " + enum_text(static_cast<proto::ProgramKind>(nak.detail));
   return s;
 }
