@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "palp/protocol/frame.hpp"
@@ -149,6 +150,32 @@ TEST(SimServerHostLoss, RaisingTheControlRateKeepsDeviceTimeAtRealTime) {
 
 TEST(SimServerHostLoss, LoweringTheControlRateKeepsDeviceTimeAtRealTime) {
   rate_change_keeps_the_pace(40000, 20000);  // froze for the time before
+}
+
+TEST(SimServerHostLoss, BytesArrivingPastTheHeartbeatTimeoutFindTheFaultLatchedNotTheWatchdogFed) {
+  // palp-sim's own steps pause past the timeout (as a reconnect found virtual time frozen); the
+  // host's next bytes must meet the watchdog's overdue check first, as on hardware, where the
+  // MCU timer never stopped
+  auto s = make_server(1);
+  Client host(s->device().port());
+  ASSERT_GE(host.fd, 0);
+  proto::SetParams p;
+  p.heartbeat_timeout_ms = 50;
+  host.send(p, 1);
+  host.send(proto::LoadHold{0.5f, 0.0f}, 2);
+  host.send(proto::ProgramStart{}, 3);
+  const Simulation& sim = s->instrument().simulation();
+  for (int k = 0; k < 10; ++k) {  // armed and fed: 30 ms, inside the timeout
+    host.send(proto::Heartbeat{}, static_cast<proto::u16>(10 + k));
+    step_for(*s, 3ms, &host);
+  }
+  ASSERT_EQ(s->instrument().simulation().controller().fault(), proto::FaultReason::none);
+  ASSERT_NE(sim.ticks(), 0u);
+  std::this_thread::sleep_for(120ms);  // no step: more than twice the timeout
+  host.send(proto::Heartbeat{}, 30);
+  step_for(*s, 5ms, &host);
+  EXPECT_EQ(s->instrument().simulation().controller().fault(),
+            proto::FaultReason::heartbeat_timeout);
 }
 
 TEST(SimServerHostLoss, AnOverlongControlLineIsDiscardedWithOneEscapedErrorAndTheNextAnswered) {
