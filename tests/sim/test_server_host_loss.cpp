@@ -64,6 +64,7 @@ TEST(SimServerHostLoss, AHostThatNeitherDrainsNorSendsIsLostAfterTheHeartbeatTim
   auto s = make_server(0);
   Client host(s->device().port(), 4096);
   ASSERT_GE(host.fd, 0);
+  host.hello();
   host.send(proto::StreamConfigure{proto::kAllChannels, 1, 40}, 1);
   host.send(proto::StreamStart{}, 2);
   const Simulation& sim = s->instrument().simulation();
@@ -88,6 +89,7 @@ TEST(SimServerHostLoss, AHostThatSendsButDoesNotDrainStallsVirtualTimeForLongerT
   auto s = make_server(0);
   Client host(s->device().port(), 4096);
   ASSERT_GE(host.fd, 0);
+  host.hello();
   host.send(proto::StreamConfigure{proto::kAllChannels, 1, 40}, 1);
   host.send(proto::StreamStart{}, 2);
   const Simulation& sim = s->instrument().simulation();
@@ -120,6 +122,7 @@ void rate_change_keeps_the_pace(std::uint32_t from, std::uint32_t to) {
   auto s = make_server(1);
   Client host(s->device().port());
   ASSERT_GE(host.fd, 0);
+  host.hello();
   const Simulation& sim = s->instrument().simulation();
   proto::SetParams p;
   p.control_rate_Hz = from;
@@ -159,6 +162,7 @@ TEST(SimServerHostLoss, BytesArrivingPastTheHeartbeatTimeoutFindTheFaultLatchedN
   auto s = make_server(1);
   Client host(s->device().port());
   ASSERT_GE(host.fd, 0);
+  host.hello();
   proto::SetParams p;
   p.heartbeat_timeout_ms = 50;
   host.send(p, 1);

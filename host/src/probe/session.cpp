@@ -85,10 +85,11 @@ std::string nak_text(const char* request, const proto::FieldInfo* fields, std::s
   }
   if (nak.error == proto::ErrorCode::faulted || nak.error == proto::ErrorCode::fault_persists)
     s += "; latched fault: " + enum_text(static_cast<proto::FaultReason>(nak.detail));
-  // detail names the running program; 0 (none) comes with a busy that is no program's (the
-  // stream already running refuses StreamConfigure and SetParams): "running: none" was wrong
-  if (nak.error == proto::ErrorCode::busy && nak.detail != 0)
-    s += "; running: " + enum_text(static_cast<proto::ProgramKind>(nak.detail));
+  // detail names the running program, none when only the stream runs (SPEC §6.3): a stream
+  // left running by an earlier host read "running: none"
+  if (nak.error == proto::ErrorCode::busy)
+    s += nak.detail != 0 ? "; running: " + enum_text(static_cast<proto::ProgramKind>(nak.detail))
+                         : std::string("; the stream is running (no program)");
   return s;
 }
 
