@@ -101,25 +101,31 @@ void Server::step() {
   if (ev.connected || pace != pace_at_sync_ || sim.controller().control_rate_Hz() != rate_at_sync_)
     resync(pace);
 
+  // the host's bytes meet the watchdog's overdue check at their wall time first, as on hardware
+  // where the tick never stops: one tick now unless one ran within the last 0.5 ms (a held
+  // event ticks not, and its bytes wait for the reaction latency anyway)
+  if (!rx.empty()) {
+    const std::uint64_t now_us = wall_us();
+    if (!sim.holding() && now_us - last_tick_us_ > 500 && sim.run(1, now_us) > 0)
+      last_tick_us_ = now_us;
+    sim.host_bytes(rx.data(), rx.size(), now_us);
+  }
   if (stall) {
-    // virtual time stands: when it goes on, it counts from then (no catch-up burst); bytes
-    // from a stalled host still see the watchdog's overdue check first
+    // virtual time stands: when it goes on, it counts from then (no catch-up burst)
     resync(pace);
-    if (!rx.empty()) sim.run(1, wall_us());
   } else {
     const std::uint32_t ms = sim.controller().control_rate_Hz() / 1000;  // 1 ms of virtual time
     // a lost host's real time catches up in chunks of up to 10 ms (its steps sleep 1 ms)
     std::uint32_t chunk = paced_chunk(pace, lost_ ? 10 * ms : ms);
-    // the overdue check before the bytes feed; a held event's timeout is checked in run()
-    if (chunk == 0 && (!rx.empty() || sim.holding())) chunk = 1;
+    if (chunk == 0 && sim.holding()) chunk = 1;  // a held event's timeout is checked in run()
     if (chunk == 0) {
       if (!lost_) std::this_thread::sleep_for(std::chrono::microseconds(200));
     } else {
-      sim.run(chunk, wall_us());
+      const std::uint64_t now_us = wall_us();
+      if (sim.run(chunk, now_us) > 0) last_tick_us_ = now_us;
     }
     if (sim.holding()) resync(pace);  // held virtual time goes on from the release, no burst
   }
-  if (!rx.empty()) sim.host_bytes(rx.data(), rx.size(), wall_us());
   serve_control();
   // device bytes keep their order: whatever the socket buffer refused goes first next time
   const std::vector<std::uint8_t> out = sim.take_device_bytes();

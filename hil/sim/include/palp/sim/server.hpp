@@ -3,11 +3,11 @@
 // robot on, the robot bridge's ModbusServer. One step():
 //
 //   - polls the robot's Modbus socket (every 0.2 ms of wall time at most) and the device socket,
-//     hands the host's bytes to the simulation and answers control lines;
+//     and hands the host's bytes to the simulation, after a tick at their wall time unless one
+//     ran within 0.5 ms (so the heartbeat watchdog's overdue check comes before they feed it);
 //   - runs up to 1 ms of virtual time, no further than wall time allows at the pace (0: as fast
 //     as possible); a held contact event holds virtual time;
-//   - hands the host's bytes to the simulation after that tick ran at this step's wall time, so
-//     the heartbeat watchdog's overdue check always comes before new bytes feed it;
+//   - answers control lines;
 //   - sends the device bytes in order, keeping what the socket refused for the next step.
 //
 // Host loss (hil/README.md "Host loss"): with no client, virtual time runs at real time,
@@ -99,6 +99,7 @@ class Server final : public Serving {
   std::uint32_t rate_at_sync_ = 0;          // ... at this control rate ...
   double pace_at_sync_ = -1;                // ... and this pace (1 while the host is lost)
   Clock::time_point host_heard_ = t0_;      // the device client's last bytes (or its connect)
+  std::uint64_t last_tick_us_ = 0;          // wall_us() of the last step that ran a tick
   bool lost_ = true;
   std::uint64_t dropped_frames_ = 0;
   std::uint64_t last_robot_poll_us_ = 0;
