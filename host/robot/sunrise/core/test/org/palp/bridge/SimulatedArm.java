@@ -1,12 +1,18 @@
 package org.palp.bridge;
 
 /**
- * A kinematic arm on the wall clock for LoopbackBridge: straight-line motion at the commanded
- * speed, a 10 ms stop latency, tool frame = base frame, and a rigid plate at plateZUm with a
- * stiffness of 1 N/mm that pushes back on the tool below it. Enough to run bridge_check.py.
+ * A kinematic arm for LoopbackBridge: straight-line motion at the commanded speed, a 10 ms stop
+ * latency, tool frame = base frame, and a rigid plate at plateZUm with a stiffness of 1 N/mm that
+ * pushes back on the tool below it. Enough to run bridge_check.py.
+ *
+ * It moves on the clock it is given, which LoopbackBridge steps by one cycle (5 ms) per bridge
+ * cycle: what the arm does between two cycles never depends on how the JVM was scheduled (on the
+ * wall clock, a cycle thread preempted between the core's latch of the pose and its stop, or a
+ * late cycle, moved the arm further: issue 17's flaky force-guard test).
  */
 final class SimulatedArm implements Arm {
   private static final long STOP_LATENCY_MS = 10;
+  private final Clock clock;
   private final int plateZUm;
   private double x;
   private double y;
@@ -20,13 +26,14 @@ final class SimulatedArm implements Arm {
   private boolean active;
   private boolean stopped;
 
-  SimulatedArm(int startZUm, int plateZUm) {
+  SimulatedArm(Clock clock, int startZUm, int plateZUm) {
+    this.clock = clock;
     this.z = startZUm;
     this.plateZUm = plateZUm;
   }
 
-  private static long now() {
-    return System.nanoTime() / 1000000L;
+  private long now() {
+    return clock.millis();
   }
 
   private synchronized void update() {
