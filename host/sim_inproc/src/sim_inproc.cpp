@@ -39,6 +39,7 @@ struct InprocSimulator::Core final : Serving {
     i.git_hash = "inproc";
     i.robot = o.robot;
     i.world.bridge.seed = o.seed;
+    i.world.input_latency_ms = o.robot_input_latency_ms;
     return i;
   }
 

@@ -22,6 +22,7 @@ constexpr double kRestS = 0.05;         // the contact settles after the arm sto
 constexpr double kSearchSpeed = 10e-3;  // the coarse search, m/s
 constexpr double kBackOff = 0.5e-3;     // from the first touch before the slow approach
 constexpr double kMeasurableM = 4e-6;   // overtravel that tells a contact stiffness
+constexpr double kStaleInputS = 1.0;    // longest the robot's input may lag the contact line
 
 std::string mm(double m) {
   char b[32];
@@ -95,25 +96,49 @@ Toucher::Approach Toucher::approach(double speed, double travel_m) {
   g.max_travel_m = travel_m;
   g.guard_host_stop = true;
   g.digital_input = rig_.contact_input;
-  const MotionHandle h = robot_.start_guarded_approach(g);
   Approach a;
   const auto deadline = std::chrono::steady_clock::now() + 10s +
                         std::chrono::milliseconds(static_cast<long>(4000 * travel_m / speed));
+  std::optional<double> stale_since_s;
   for (;;) {
-    check_cancelled();
-    a.event = probe_.wait_contact(2ms);
-    if (a.event) {
-      robot_.stop();  // the host's path; the robot's own input may already have stopped it
+    const MotionHandle h = robot_.start_guarded_approach(g);
+    for (;;) {
+      check_cancelled();
+      a.event = probe_.wait_contact(2ms);
+      if (a.event) {
+        robot_.stop();  // the host's path; the robot's own input may already have stopped it
+        break;
+      }
+      if (robot_.status().done_seq == h.seq) break;
+      if (std::chrono::steady_clock::now() > deadline)
+        throw TimeoutError("the guarded approach to end", 4 * travel_m / speed + 10, std::nullopt);
+    }
+    a.motion = robot_.wait(h, 5s);
+    if (a.event) break;
+    if (!stopped_by_the_input(a.motion)) {
+      a.event = probe_.wait_contact(a.motion.result == rb::Result::guard_fired ? 500ms : 0ms);
       break;
     }
-    if (robot_.status().done_seq == h.seq) break;
-    if (std::chrono::steady_clock::now() > deadline)
-      throw TimeoutError("the guarded approach to end", 4 * travel_m / speed + 10, std::nullopt);
+    // The robot's input stopped it but the watch has seen no contact: the robot still sees the
+    // previous contact's line, which the watch's ProgramStart lowered less than the robot's input
+    // latency ago. Approach again once that level is gone (bounded: a stuck input is an error).
+    const Status st = probe_.status();
+    if (st.program_state != proto::ProgramState::running) {
+      a.event = probe_.wait_contact(500ms);  // the watch fired: the robot's input was first
+      break;
+    }
+    if (!stale_since_s) stale_since_s = st.t_device_s;
+    if (st.t_device_s - *stale_since_s > kStaleInputS)
+      throw Error("the robot's digital input " + std::to_string(rig_.contact_input) +
+                  " stays high while the probe's contact line is low (for " +
+                  std::to_string(std::lround(kStaleInputS * 1e3)) + " ms of device time): check the wiring of the contact line");
   }
-  a.motion = robot_.wait(h, 5s);
-  if (!a.event)  // stopped by the robot's own input: the event is on its way
-    a.event = probe_.wait_contact(a.motion.result == rb::Result::guard_fired ? 500ms : 0ms);
   return a;
+}
+
+bool Toucher::stopped_by_the_input(const MotionResult& m) const {
+  return m.result == rb::Result::guard_fired &&
+         (m.guard_fired & rb::bit(rb::GuardSource::digital_input)) != 0;
 }
 
 void Toucher::back_off(double distance_m) {
@@ -173,12 +198,16 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
     t.reason = "no contact within " + mm(search_travel) + " of travel";
     return t;
   }
-  robot_.move_lin_rel(Pose{0, 0, -kBackOff, 0, 0, 0}, search);
+  // back off until the tip is kBackOff clear of the surface: by kBackOff plus how far the coil is
+  // pushed in now (the search's overtravel past the contact, which grows with the stop latency:
+  // 0.5 mm at 10 mm/s and 50 ms, and then a fixed 0.5 mm would start the slow approach in contact)
+  const double back_off = kBackOff + std::max(0.0, floating_stroke_m_ - stroke_now_m());
+  robot_.move_lin_rel(Pose{0, 0, -back_off, 0, 0, 0}, search);
   wait_device(kSettleS);
   const double stroke_free = stroke_now_m();
-  Approach fine = approach(approach_speed.value_or(rig_.approach_speed_m_per_s), 2 * kBackOff);
+  Approach fine = approach(approach_speed.value_or(rig_.approach_speed_m_per_s), back_off + kBackOff);
   if (!fine.event) {
-    t.reason = "no contact within " + mm(2 * kBackOff) + " of the first touch";
+    t.reason = "no contact within " + mm(back_off + kBackOff) + " of the first touch";
     return t;
   }
   wait_device(kRestS);

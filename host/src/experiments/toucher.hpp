@@ -56,7 +56,11 @@ class Toucher {
 
  private:
   struct Approach;
+  /// Arms the watch and approaches until the watch fires, the robot's input stops the arm, or
+  /// travel_m; an approach the input stopped although the watch saw no contact (the robot still
+  /// saw the previous contact's line) is started again.
   Approach approach(double speed, double travel_m);
+  bool stopped_by_the_input(const MotionResult& m) const;
   void arm();
   double stroke_now_m();
 

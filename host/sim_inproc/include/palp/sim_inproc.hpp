@@ -54,6 +54,9 @@ struct InprocOptions {
   double reaction_latency_ms = 2.0;         ///< virtual time from an event to the reaction
   std::string serial = "SIM-0001";          ///< the serial number the device reports
   bool robot = false;  ///< the robot bridge emulator with palp-sim's default frames (robot_uri())
+  /// With robot: virtual time from the probe's contact-output line to the bridge's digital
+  /// input 1 (palp-sim's --robot-input-latency-ms; at least one tick)
+  double robot_input_latency_ms = 1.0;
 
   /// The options a sim+inproc:// URI gives; ConfigError naming the URI and the bad parameter.
   static InprocOptions from_uri(const Uri& uri);
