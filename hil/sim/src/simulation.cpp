@@ -147,7 +147,7 @@ void Simulation::frame_done() {
       counters_.frames_out % options_.corrupt_every == 0 && frame_.size() > 2) {
     std::uint8_t& b = frame_[frame_.size() / 2];
     b = static_cast<std::uint8_t>(b ^ 0x04);
-    if (b == 0) b = 0x04;  // never create a delimiter
+    if (b == 0) b = 0x08;  // never create a delimiter (0x04 -> 0x08: still a changed byte)
     ++counters_.frames_corrupted;
   }
   if (drop) {
