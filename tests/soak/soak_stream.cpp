@@ -73,8 +73,9 @@ class Audit {
     if (g.source == palp::GapSource::transport) transport_missing_ += g.count;
     else if (g.source == palp::GapSource::host_queue) queue_missing_ += g.count;
     else ++other_sources_;
-    gap_list_.push_back(g);
+    if (keep_gaps_) gap_list_.push_back(g);  // for the recording's sidecar only
   }
+  bool keep_gaps_ = false;
   std::uint64_t next_ = 0, received_ = 0, unreported_ = 0, duplicates_ = 0, overlapping_ = 0, gaps_ = 0,
                 missing_ = 0, transport_missing_ = 0, queue_missing_ = 0, other_sources_ = 0;
   std::vector<palp::Gap> gap_list_;
@@ -128,6 +129,7 @@ int main(int argc, char** argv) {
   probe.start_stream();
 
   Audit audit;
+  audit.keep_gaps_ = writer.has_value();
   const auto target = static_cast<std::uint64_t>(o.seconds * kRate_Hz);
   std::vector<double> rss;  // at every tenth of the run
   std::vector<palp::StreamItem> items;
@@ -145,7 +147,7 @@ int main(int argc, char** argv) {
     items.clear();
     if (auto first = probe.next(std::chrono::milliseconds(2000))) items.push_back(*first);
     else break;  // a stalled stream: the audit below says so
-    probe.drain(items);
+    probe.drain(items, 4096);  // bounded: this vector is not a second queue
     for (const auto& item : items) take(item);
     if (audit.next_ * 10 >= target * (rss.size() + 1) || rss.empty()) rss.push_back(rss_MB());
   }
