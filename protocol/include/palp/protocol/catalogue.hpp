@@ -66,11 +66,13 @@
   E(i2t, 2, "The coil's I2t thermal model reached its limit.")                            \
   E(travel_limit, 3, "The encoder left [travel_min_counts, travel_max_counts].")          \
   E(heartbeat_timeout, 4, "No host message within heartbeat_timeout_ms while armed.")     \
-  E(supply_undervoltage, 5, "The coil supply fell below its minimum.")                    \
-  E(encoder_error, 6, "The encoder reported an impossible transition.")                  \
+  E(supply_undervoltage, 5, "The coil supply fell below its minimum; detail: the supply in mV.") \
+  E(encoder_error, 6, "The encoder reported an impossible transition; detail: the counts of a jump, or 0 when it stood still while the coil had to move.") \
   E(control_overrun, 7, "A control tick did not finish within its period.")               \
   E(host_request, 8, "The host asked for a fault (test and emergency stop).")             \
-  E(internal, 9, "An internal consistency check failed.")
+  E(internal, 9, "An internal consistency check failed.")                                \
+  E(driver_fault, 10, "The H-bridge driver signalled a fault on its fault line; detail: measured current in 0.1 mA (since 1.1).") \
+  E(current_sense_error, 11, "The current-sense reading is at the end of its range or stuck while the coil voltage changed; detail: the raw reading in 0.1 mA (since 1.1).")
 
 #define PALP_ENUM_DeviceState(E)                                  \
   E(idle, 0, "Current zero, no program running.")                 \
