@@ -58,6 +58,15 @@ void Controller::tick(const TickInputs& in, TickOutputs& out) {
   i_meas_A_ = apply_current_calibration(in.i_sense_A, calibration_.current_offset_A,
                                         calibration_.current_gain);
   pressure_.add(in.pressure_codes);
+  SensorReadings readings;
+  readings.i_sense_A = in.i_sense_A;
+  readings.i_measured_A = i_meas_A_;
+  readings.encoder_counts = z;
+  readings.encoder_step_counts = encoder_.last_step_counts();
+  readings.v_applied_V = v_cmd_V_;  // last tick's output, applied until now
+  readings.supply_V = in.supply_V;
+  readings.driver_fault = in.driver_fault;
+  readings.dt_s = dt;
 
   // program, then safety (which owns the only set-point the loop may use)
   const ProgramStep step = programs_.step(now, z);
@@ -68,6 +77,7 @@ void Controller::tick(const TickInputs& in, TickOutputs& out) {
   si.program_running = step.running;
   si.dt_s = dt;
   si.watchdog_now_us = in.watchdog_now_us;
+  si.sensor = monitor_.update(readings);
   const SafetyVerdict verdict = safety_.check(si);
   clamped_ = verdict.clamped;
 

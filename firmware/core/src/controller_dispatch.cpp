@@ -93,10 +93,12 @@ void Controller::apply_params(const proto::Params& p) {
   params_ = p;
   safety_.configure(p);
   loop_.set_supply_V(p.supply_V);
+  monitor_.configure(p.supply_V, calibration_.stroke_origin_counts);
 }
 
 void Controller::apply_calibration(const CalibrationData& c) {
   calibration_ = c;
+  monitor_.configure(params_.supply_V, c.stroke_origin_counts);
   PressureCalibration pc;
   pc.offset_Pa = c.pressure_offset_Pa;
   pc.gain = c.pressure_gain;
@@ -239,7 +241,7 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       streamer_.stop();
       ack(h);
     } else if constexpr (std::is_same_v<M, FaultClear>) {
-      switch (safety_.clear(wd_now_us)) {
+      switch (safety_.clear(wd_now_us, monitor_.cause_present(safety_.fault()))) {
         case ClearResult::cleared:
         case ClearResult::not_latched:
           ack(h);

@@ -56,6 +56,7 @@ SafetyVerdict Safety::check(const SafetyInputs& in) {
 
   if (!std::isfinite(in.i_request_A)) latch(FaultReason::internal, 1);
   if (!std::isfinite(in.i_measured_A)) latch(FaultReason::internal, 2);
+  latch(in.sensor.reason, in.sensor.detail);  // none latches nothing
 
   if (overcurrent_now(in.i_measured_A)) {
     if (in.dt_s > 0.0f) overcurrent_s_ += in.dt_s;
@@ -98,7 +99,7 @@ SafetyVerdict Safety::check(const SafetyInputs& in) {
   return verdict;
 }
 
-ClearResult Safety::clear(std::uint64_t now_wd_us) {
+ClearResult Safety::clear(std::uint64_t now_wd_us, bool sensor_cause_present) {
   if (!tripped()) return ClearResult::not_latched;
   bool persists = false;
   switch (fault_) {
@@ -117,6 +118,12 @@ ClearResult Safety::clear(std::uint64_t now_wd_us) {
       break;
     case FaultReason::internal:
       persists = !std::isfinite(last_measured_A_);
+      break;
+    case FaultReason::driver_fault:
+    case FaultReason::supply_undervoltage:
+    case FaultReason::current_sense_error:
+    case FaultReason::encoder_error:
+      persists = sensor_cause_present;
       break;
     default:
       break;

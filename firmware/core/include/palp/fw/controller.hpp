@@ -24,6 +24,7 @@
 #include "palp/fw/programs.hpp"
 #include "palp/fw/ring.hpp"
 #include "palp/fw/safety.hpp"
+#include "palp/fw/sensor_monitor.hpp"
 #include "palp/fw/spsc_queue.hpp"
 #include "palp/fw/streamer.hpp"
 #include "palp/protocol/frame.hpp"
@@ -48,6 +49,8 @@ struct TickInputs {
   std::uint16_t encoder_timer = 0;        ///< the encoder timer's 16-bit count
   PressureChannels::Codes pressure_codes{};  ///< six 12-bit ADC codes
   std::uint64_t watchdog_now_us = 0;      ///< the watchdog's own clock
+  float supply_V = kDefaultSupply_V;      ///< measured H-bridge supply (sensor_monitor.hpp)
+  bool driver_fault = false;              ///< the H-bridge driver's fault line, asserted
 };
 
 /// What the board applies until the next tick.
@@ -159,6 +162,7 @@ class Controller {
   Encoder encoder_;
   PressureChannels pressure_;
   Safety safety_;
+  SensorMonitor monitor_;
   ProgramRunner programs_;
   Streamer streamer_;
 

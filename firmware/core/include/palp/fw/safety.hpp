@@ -5,13 +5,17 @@
 //
 // Use, every control tick:
 //     const SafetyVerdict verdict = safety.check({i_request_A, i_measured_A, encoder_counts,
-//                                                program_running, dt_s, watchdog_now_us});
+//                                                program_running, dt_s, watchdog_now_us,
+//                                                sensor_monitor.update(readings)});
 //     const float v = current_loop.update(verdict.i_set_A, i_measured_A, dt_s);
 // (with the set-point 0 A the loop pulls the current down at up to -supply_V: from 3 A to 0
 // in about 0.2 ms). On every valid host request: safety.feed(watchdog_now_us).
 //
 // Checks (first match wins when several trip in the same call; the first latched fault stays):
 //   internal           the requested or measured current is not a finite number;
+//   sensor faults      what the SensorMonitor (sensor_monitor.hpp) found this tick:
+//                      driver_fault, supply_undervoltage, current_sense_error, encoder_error,
+//                      with its detail;
 //   overcurrent        |measured i| > current_clamp_A + kOvercurrentMargin_A (0.25 A) for
 //                      kOvercurrentTime_s (1 ms) in a row, control time; detail: i in 0.1 mA;
 //   travel_limit       encoder outside [travel_min_counts, travel_max_counts]; detail: count;
@@ -20,7 +24,7 @@
 //   heartbeat_timeout  armed and watchdog_now - last feed > heartbeat_timeout_ms; detail: ms
 //                      late. Armed while the requested current is not 0 or a program runs.
 // trip() latches the reasons the core cannot see itself (host_request, control_overrun,
-// supply_undervoltage, encoder_error, internal).
+// internal).
 //
 // Current clamp: |i_request| > current_clamp_A is limited to +-current_clamp_A and reported
 // (SafetyVerdict::clamped, StatusBit::current_clamped). It is not a fault.
@@ -34,6 +38,7 @@
 //   i2t: the model cooled to <= kI2tReleaseFraction (50 %) of its limit (after a trip at 3 A,
 //   about 7 s at 0 A with the recommended parameters);
 //   heartbeat_timeout: fed within the timeout (the FaultClear request itself feeds);
+//   the sensor faults: the SensorMonitor no longer sees the cause (clear()'s sensor_cause_present);
 //   the reasons passed to trip(): nothing the core can judge; their reporter trips again if the
 //   condition is still there.
 #pragma once
@@ -41,6 +46,7 @@
 #include <cstdint>
 
 #include "palp/fw/i2t_model.hpp"
+#include "palp/fw/sensor_monitor.hpp"
 #include "palp/protocol/messages.hpp"
 
 namespace palp::fw {
@@ -58,6 +64,7 @@ struct SafetyInputs {
   bool program_running = false;
   float dt_s = 0.0f;                 // control tick period (control clock)
   std::uint64_t watchdog_now_us = 0; // the watchdog's own clock
+  SensorFinding sensor{};            // a sensor or power-stage fault found this tick
 };
 
 /// What the tick may do.
@@ -87,8 +94,9 @@ class Safety {
   void feed(std::uint64_t now_wd_us);
   /// Latches a fault the core cannot detect itself (first fault wins).
   void trip(proto::FaultReason reason, std::int32_t detail);
-  /// Releases the latch if the cause is gone (see the top of the file).
-  ClearResult clear(std::uint64_t now_wd_us);
+  /// Releases the latch if the cause is gone (see the top of the file). sensor_cause_present:
+  /// the SensorMonitor still sees the cause of a sensor fault (SensorMonitor::cause_present).
+  ClearResult clear(std::uint64_t now_wd_us, bool sensor_cause_present = false);
 
   bool tripped() const { return fault_ != proto::FaultReason::none; }
   proto::FaultReason fault() const { return fault_; }
