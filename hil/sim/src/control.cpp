@@ -47,6 +47,59 @@ std::string q(std::string_view w) {
   return s;
 }
 
+// fault <kind> [argument]: see control.hpp
+std::optional<ControlCommand> parse_fault(const std::vector<std::string_view>& w,
+                                          std::string& error) {
+  using K = cmd::Fault::Kind;
+  const char* kinds = "encoder-stuck, encoder-glitch <counts>, adc-stuck, adc-saturate high|low, "
+                      "driver, supply-sag <V> or clear";
+  if (w.size() < 2) {
+    error = std::string("fault: expected ") + kinds;
+    return std::nullopt;
+  }
+  const std::string_view kind = w[1];
+  auto fail = [&](const std::string& what) -> std::optional<ControlCommand> {
+    error = "fault " + std::string(kind) + ": " + what;
+    return std::nullopt;
+  };
+  const std::size_t args = w.size() - 2;
+  const struct { const char* name; K kind; } bare[] = {
+      {"encoder-stuck", K::encoder_stuck}, {"adc-stuck", K::adc_stuck},
+      {"driver", K::driver}, {"clear", K::clear}};
+  for (const auto& b : bare)
+    if (kind == b.name) {
+      if (args != 0) return fail("expected no arguments");
+      return cmd::Fault{b.kind};
+    }
+  if (kind == "encoder-glitch") {
+    if (args != 1) return fail("expected <counts>");
+    std::int32_t n = 0;
+    const char* end = w[2].data() + w[2].size();
+    const auto r = std::from_chars(w[2].data(), end, n);
+    if (r.ec != std::errc{} || r.ptr != end || n == 0 || n > 30000 || n < -30000)
+      return fail(q(w[2]) + " is not a whole number of counts, nonzero, -30000 to 30000");
+    cmd::Fault f{K::encoder_glitch};
+    f.counts = n;
+    return f;
+  }
+  if (kind == "adc-saturate") {
+    if (args != 1 || (w[2] != "high" && w[2] != "low")) return fail("expected high or low");
+    cmd::Fault f{K::adc_saturate};
+    f.high = w[2] == "high";
+    return f;
+  }
+  if (kind == "supply-sag") {
+    double v = 0;
+    if (args != 1) return fail("expected <V>");
+    if (!number(w[2], v) || v < 0) return fail(q(w[2]) + " is not a voltage in V >= 0");
+    cmd::Fault f{K::supply_sag};
+    f.volts = v;
+    return f;
+  }
+  error = "fault: unknown fault " + q(kind) + "; expected " + kinds;
+  return std::nullopt;
+}
+
 }  // namespace
 
 const char* control_help() {
@@ -54,7 +107,9 @@ const char* control_help() {
          "pace realtime|fast|<factor> | drop-frames <n> | corrupt-frames <n> | "
          "announce <major>.<minor> [0x<hash>] | announce actual | reaction-latency <ms> | "
          "hold-timeout <ms> | robot-reply-delay <ms> | robot-drop | "
-         "robot-freeze-heartbeat on|off | robot-reject <result-name> <n> | robot-fault";
+         "robot-freeze-heartbeat on|off | robot-reject <result-name> <n> | robot-fault | "
+         "fault encoder-stuck | fault encoder-glitch <counts> | fault adc-stuck | "
+         "fault adc-saturate high|low | fault driver | fault supply-sag <V> | fault clear";
 }
 
 std::optional<ControlCommand> parse_control(std::string_view line, std::string& error) {
@@ -174,6 +229,7 @@ std::optional<ControlCommand> parse_control(std::string_view line, std::string& 
     if (!unsigned_number(w[2], n)) return bad(q(w[2]) + " is not an unsigned integer");
     return cmd::RobotReject{value, n};
   }
+  if (name == "fault") return parse_fault(w, error);
   error = "unknown command " + q(name) + "; try 'help'";
   return std::nullopt;
 }

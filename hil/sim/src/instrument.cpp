@@ -18,7 +18,7 @@ Instrument::Instrument(InstrumentOptions options)
   SimulationOptions so;
   so.hold_timeout_ms = o_.hold_timeout_ms;
   so.reaction_latency_ms = o_.reaction_latency_ms;
-  sim_ = std::make_unique<Simulation>(identity_, std::make_unique<ModelPlant>(o_.phantom, o_.seed), so);
+  sim_ = std::make_unique<Simulation>(identity_, make_plant(o_.phantom, o_.seed), so);
   if (o_.robot) {
     world_ = std::make_unique<RobotWorld>(*sim_, o_.world);
     sim_->set_plant(make_plant(o_.phantom, o_.seed));
@@ -28,15 +28,21 @@ Instrument::Instrument(InstrumentOptions options)
   }
 }
 
+// the plant with the sensor faults between it and the board (sensor_faults.hpp)
 std::unique_ptr<PlantLink> Instrument::make_plant(const std::string& phantom, std::uint64_t seed) {
   auto model = std::make_unique<ModelPlant>(phantom, seed);
-  if (!world_) return model;
-  return std::make_unique<ArmMountedPlant>(std::move(model), *world_, *sim_);
+  const plant::PlantConfig config = model->model().config();
+  std::unique_ptr<PlantLink> link;
+  if (world_) link = std::make_unique<ArmMountedPlant>(std::move(model), *world_, *sim_);
+  else link = std::move(model);
+  return std::make_unique<FaultyPlant>(std::move(link), faults_, config.sensors,
+                                       config.coil.supply_V);
 }
 
 plant::Plant& Instrument::model() {
-  if (world_) return static_cast<ArmMountedPlant&>(sim_->plant()).inner().model();
-  return static_cast<ModelPlant&>(sim_->plant()).model();
+  PlantLink& link = static_cast<FaultyPlant&>(sim_->plant()).inner();
+  if (world_) return static_cast<ArmMountedPlant&>(link).inner().model();
+  return static_cast<ModelPlant&>(link).model();
 }
 
 void Instrument::mount(double x_mm, double y_mm, double z_mm) {
@@ -89,6 +95,7 @@ std::string Instrument::status(Serving& serving) {
                 proto::enum_name(sim_->controller().fault()));
   line += buf;
   line += serving.status_fields();
+  line += " sensor_faults=" + faults_.describe();
   ModbusServer* server = serving.robot_server();
   if (world_ && server) {
     const auto& s = world_->bridge().status();
@@ -166,6 +173,8 @@ std::string Instrument::apply(const ControlCommand& command, Serving& serving) {
         } else if constexpr (std::is_same_v<C, cmd::HoldTimeout>) {
           sim_->options().hold_timeout_ms = cmd.ms;
           return "ok";
+        } else if constexpr (std::is_same_v<C, cmd::Fault>) {
+          return apply_fault(cmd);
         } else if constexpr (std::is_same_v<C, cmd::RobotReplyDelay>) {
           if (auto off = robot_off("robot-reply-delay"); !off.empty()) return off;
           serving.robot_server()->set_reply_delay_ms(cmd.ms);
@@ -192,6 +201,46 @@ std::string Instrument::apply(const ControlCommand& command, Serving& serving) {
         }
       },
       command);
+}
+
+std::string Instrument::apply_fault(const cmd::Fault& f) {
+  using K = cmd::Fault::Kind;
+  switch (f.kind) {
+    case K::encoder_stuck:
+      faults_.encoder_stuck = true;
+      faults_.frozen_counts.reset();
+      break;
+    case K::encoder_glitch:
+      faults_.encoder_offset_counts += f.counts;
+      faults_.frozen_counts.reset();  // a stuck encoder freezes again where the glitch left it
+      break;
+    case K::adc_stuck:
+      faults_.adc = AdcFault::stuck;
+      faults_.frozen_sense_A.reset();
+      break;
+    case K::adc_saturate:
+      faults_.adc = f.high ? AdcFault::saturate_high : AdcFault::saturate_low;
+      break;
+    case K::driver:
+      faults_.driver = true;
+      break;
+    case K::supply_sag: {
+      const double nominal = model().config().coil.supply_V;
+      if (f.volts > nominal) {
+        char e[128];
+        std::snprintf(e, sizeof e,
+                      "error: fault supply-sag: %g V is above the nominal supply of %g V", f.volts,
+                      nominal);
+        return e;
+      }
+      faults_.supply_V = f.volts;
+      break;
+    }
+    case K::clear:
+      faults_.clear();
+      break;
+  }
+  return "ok";
 }
 
 }  // namespace palp::sim

@@ -91,6 +91,8 @@ void Simulation::tick_once(std::uint64_t wall_us) {
   in.encoder_timer = static_cast<std::uint16_t>(plant_->encoder_counts());
   in.pressure_codes = plant_->pressure_codes();
   in.watchdog_now_us = wall_us;
+  in.supply_V = plant_->supply_V();
+  in.driver_fault = plant_->driver_fault();
   fw::TickOutputs out;
   controller_.tick(in, out);
   contact_line_ = out.contact_line;

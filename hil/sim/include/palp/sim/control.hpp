@@ -14,6 +14,16 @@
 //   announce actual                   back to this build's version and schema
 //   reaction-latency <ms>             virtual time from a host's reaction to its effect
 //   hold-timeout <ms>                 wall time a contact event waits for the host's reaction
+// Sensor and actuator faults (sensor_faults.hpp; the core's reaction: docs/reliability.md §5):
+//   fault encoder-stuck               the encoder count freezes where it is
+//   fault encoder-glitch <counts>     miscounted edges: the count is offset by <counts> (nonzero,
+//                                     |counts| <= 30000) from the next tick on
+//   fault adc-stuck                   the current-sense reading freezes where it is
+//   fault adc-saturate high|low       the current-sense ADC reads its top (bottom) code
+//   fault driver                      the H-bridge driver asserts its fault line, outputs off
+//   fault supply-sag <V>              the bridge supply drops to <V> (0 up to the nominal 24 V)
+//   fault clear                       every sensor and the power stage work again (the device's
+//                                     latch stays until the host clears it)
 // With the robot bridge on (--robot-port):
 //   robot-reply-delay <ms>            wall time every Modbus reply is held back (0: none)
 //   robot-drop                        close the Modbus client's connection now
@@ -48,13 +58,21 @@ struct RobotDrop {};
 struct RobotFreezeHeartbeat { bool on; };
 struct RobotReject { std::uint16_t result; std::uint32_t count; };  // a rejection Result value
 struct RobotFault {};
+struct Fault {
+  enum class Kind : std::uint8_t {
+    encoder_stuck, encoder_glitch, adc_stuck, adc_saturate, driver, supply_sag, clear
+  } kind;
+  std::int32_t counts = 0;  // encoder_glitch
+  bool high = true;         // adc_saturate
+  double volts = 0;         // supply_sag
+};
 }  // namespace cmd
 
 using ControlCommand = std::variant<cmd::Help, cmd::Status, cmd::Mount, cmd::Phantom, cmd::Seed,
                                     cmd::Pace, cmd::DropFrames, cmd::CorruptFrames, cmd::Announce,
                                     cmd::ReactionLatency, cmd::HoldTimeout, cmd::RobotReplyDelay,
                                     cmd::RobotDrop, cmd::RobotFreezeHeartbeat, cmd::RobotReject,
-                                    cmd::RobotFault>;
+                                    cmd::RobotFault, cmd::Fault>;
 
 /// Parses one line. On failure returns nullopt and sets error to a one-line reason that names
 /// the command and the offending word.

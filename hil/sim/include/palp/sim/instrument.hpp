@@ -18,6 +18,7 @@
 #include "palp/sim/control.hpp"
 #include "palp/sim/modbus_server.hpp"
 #include "palp/sim/robot_world.hpp"
+#include "palp/sim/sensor_faults.hpp"
 #include "palp/sim/simulation.hpp"
 
 namespace palp::sim {
@@ -66,6 +67,7 @@ class Instrument {
 
  private:
   std::unique_ptr<PlantLink> make_plant(const std::string& phantom, std::uint64_t seed);
+  std::string apply_fault(const cmd::Fault& fault);
   plant::Plant& model();
   void mount(double x_mm, double y_mm, double z_mm);
   void place_on_arm();
@@ -74,6 +76,7 @@ class Instrument {
 
   InstrumentOptions o_;
   fw::DeviceIdentity identity_;
+  SensorFaults faults_;  // the plant's FaultyPlant applies them (declared first: outlives it)
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<RobotWorld> world_;
   std::string phantom_;

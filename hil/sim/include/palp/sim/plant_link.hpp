@@ -19,6 +19,7 @@ class ModelPlant final : public PlantLink {
   float current_sense_A() override { return static_cast<float>(plant_.current_sense_A()); }
   std::int32_t encoder_counts() override { return plant_.encoder_count(); }
   std::array<std::uint16_t, 6> pressure_codes() override;
+  float supply_V() override { return static_cast<float>(plant_.config().coil.supply_V); }
 
   plant::Plant& model() { return plant_; }
   const std::string& phantom_name() const { return phantom_; }

@@ -94,6 +94,7 @@ class ArmMountedPlant final : public PlantLink {
   float current_sense_A() override { return plant_->current_sense_A(); }
   std::int32_t encoder_counts() override { return plant_->encoder_counts(); }
   std::array<std::uint16_t, 6> pressure_codes() override { return plant_->pressure_codes(); }
+  float supply_V() override { return plant_->supply_V(); }
   ModelPlant& inner() { return *plant_; }
 
  private:

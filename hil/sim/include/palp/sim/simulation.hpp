@@ -28,6 +28,10 @@ class PlantLink {
   virtual float current_sense_A() = 0;
   virtual std::int32_t encoder_counts() = 0;
   virtual std::array<std::uint16_t, 6> pressure_codes() = 0;
+  /// The H-bridge supply as the board measures it, and the driver's fault line (sensor_faults.hpp
+  /// makes them fail).
+  virtual float supply_V() { return fw::kDefaultSupply_V; }
+  virtual bool driver_fault() { return false; }
 };
 
 struct SimulationOptions {
