@@ -246,15 +246,19 @@ TEST(SensorMonitor, AtTheFrontStopOnlyACurrentTheSpringsOvercomeCounts) {
 }
 
 TEST(SensorMonitor, TheStopsMoveWithTheCalibratedStrokeOrigin) {
-  SensorMonitor m;
-  m.configure(24.0f, -5000);  // homed: the rear stop reads -5000
-  SensorFinding f;
-  EXPECT_EQ(first_finding(m, 2000, [](int k) {
-    SensorReadings r = healthy();
-    r.encoder_counts = -5000;
-    r.i_sense_A = r.i_measured_A = (k >= 100 ? 1.4f : 0.0f) + 1e-4f * static_cast<float>(k % 2);
-    return r;
-  }, f), -1);
+  // homed where the encoder read 20000: a coil resting there is on the rear stop, not mid-stroke
+  for (const std::int32_t origin : {20000, 0}) {
+    SensorMonitor m;
+    m.configure(24.0f, origin);
+    SensorFinding f;
+    const int tick = first_finding(m, 2000, [](int k) {
+      SensorReadings r = healthy();
+      r.encoder_counts = 20000;
+      r.i_sense_A = r.i_measured_A = (k >= 100 ? 1.4f : 0.0f) + 1e-4f * static_cast<float>(k % 2);
+      return r;
+    }, f);
+    EXPECT_EQ(tick, origin == 20000 ? -1 : 299) << origin;
+  }
 }
 
 TEST(SensorMonitor, ACoilReleasedFromTheFrontStopThatMovesWithin10msIsNotAFault) {
