@@ -35,10 +35,12 @@ inline std::unique_ptr<Simulation> make_scenario_simulation(const char* phantom,
   return s;
 }
 
-/// The requests (seq 1..5) that set the control rate, stream every channel at 10 kHz and start the
-/// 400-line multisine about 1.0 A, as host bytes at wall_us.
+/// The requests (seq 0..5) that open the session (Hello), set the control rate, stream every
+/// channel at 10 kHz and start the 400-line multisine about 1.0 A, as host bytes at wall_us.
 inline void start_multisine_scenario(Simulation& s, std::uint32_t rate_Hz,
                                      std::uint64_t wall_us = 0) {
+  send_frame(s, proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "scenario"},
+             0, wall_us);
   proto::SetParams p;
   p.control_rate_Hz = rate_Hz;
   send_frame(s, p, 1, wall_us);
