@@ -21,6 +21,7 @@
 // 0 A first and floats it again.
 #pragma once
 
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -52,6 +53,9 @@ struct StiffnessMap {
   std::size_t resume_index = 0;
   bool complete = false;
   std::string stopped_because;
+  /// The error that stopped the map (null when complete or cancelled), to handle by its kind:
+  /// std::rethrow_exception (palpctl exits with that kind's code). Not in map.json.
+  std::exception_ptr stopped_error;
 };
 
 struct MapProgress {

@@ -1,7 +1,9 @@
 // palp::Probe: the public API over a Session.
 #include "palp/probe.hpp"
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "palp/protocol/stream.hpp"
 #include "probe/probe_impl.hpp"
@@ -261,17 +263,34 @@ ClockMapping Probe::clock() const {
   return impl_ && impl_->session ? impl_->session->clock() : ClockMapping{};
 }
 
+Status Probe::make_safe() {
+  Session& s = impl_->s();
+  // ProgramStop ends a running program and drops a contact hold that outlived its watch (the
+  // device acknowledges it in every state, SPEC §10.1); both stops are resent on a lost reply
+  expect<proto::Ack>(s.request(proto::ProgramStop{}, s.default_timeout()), "ProgramStop");
+  expect<proto::Ack>(s.request(proto::StreamStop{}, s.default_timeout()), "StreamStop");
+  s.stream_stopped();
+  // the set-point is 0 A from the device's next control tick: read until the status shows it
+  const auto until = std::chrono::steady_clock::now() + s.default_timeout();
+  for (;;) {
+    const Status st = status();
+    const bool running = st.program_state == proto::ProgramState::running;
+    if (!running && st.i_cmd_A == 0.0) return st;
+    if (std::chrono::steady_clock::now() > until)
+      throw ProtocolError("the device acknowledged ProgramStop but still reports " +
+                          (running ? std::string("a running program")
+                                   : "a commanded current of " + std::to_string(st.i_cmd_A) + " A"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 void Probe::close() {
   if (!impl_ || !impl_->session) return;
   Session& s = *impl_->session;
-  // leave the device with zero current: stop whatever runs, then the stream
-  const auto t = std::min(s.default_timeout(), std::chrono::milliseconds(1000));
+  // leave the device with zero current whatever state this connection left it in; a request
+  // that fails here (the link is gone) leaves it to the device's heartbeat watchdog
   try {
-    if (status().program_state == proto::ProgramState::running) s.request(proto::ProgramStop{}, t);
-  } catch (const Error&) {
-  }
-  try {
-    s.request(proto::StreamStop{}, t);
+    make_safe();
   } catch (const Error&) {
   }
   s.shutdown();
