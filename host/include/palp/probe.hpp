@@ -22,10 +22,12 @@
 //
 // Lost replies: a request that only reads (GetStatus, GetHealth, GetParams, GetCalibration,
 // GetProgramStatus, Ping) or that ends in the same state however often it runs (ProgramStop,
-// StreamStop, Heartbeat) is sent again with the same seq when its reply does not come, at every
-// quarter of its timeout; the first reply answers it (health().requests_resent counts the
-// copies). Any other request's lost reply is a TimeoutError: the protocol has no rule that a
-// device recognises a repeated seq, so it is not sent twice.
+// StreamStop, Heartbeat, StreamConfigure, SetParams, SetCalibration, Load*) is sent again with
+// the same seq when its reply does not come, at every quarter of its timeout; the first reply
+// answers it (health().requests_resent counts the copies). start_stream() asks the status
+// whether a StreamStart whose Ack was lost was taken. Any other request's lost reply (start(),
+// clear_fault(), commit_calibration()) is a TimeoutError: the protocol has no rule that a device
+// recognises a repeated seq, and a second execution of these differs from the first.
 //
 // Shutdown: the destructor and close() stop any program, a contact hold and the stream
 // (make_safe()), so the device is left with zero coil current, then close the transport; every
