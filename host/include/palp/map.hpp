@@ -71,7 +71,9 @@ struct MapOptions {
   bool resume = false;                 ///< continue the map in the directory
 };
 
-/// Maps plan's grid into `dir` (created; ConfigError if it holds a map and resume is off).
+/// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and
+/// resume is off, or if the result directory of a point still to map exists and palp did not
+/// write it: check_replaceable, result.hpp).
 /// Errors and cancellation end the map as trace_surface does (arm stopped, coil at 0 A, raised
 /// to the safe height) and return it with stopped_because.
 StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
