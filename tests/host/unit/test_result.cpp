@@ -326,6 +326,8 @@ TEST(IndentationSettings, BadSettingsAreOneLineConfigErrorsNamingTheSetting) {
   EXPECT_EQ(message([](auto& s) { s.repetitions = 0; }),
             "indentation settings: repetitions must lie in 1..1000");
   EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = NAN; }),
+            "indentation settings: displacement_limit_m is nan, not a finite number");
+  EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = 0.2; }),
             "indentation settings: displacement_limit_m must lie in 0..0.1 m (0: no limit)");
   EXPECT_EQ(message([](auto&) {}), "valid");
 }
