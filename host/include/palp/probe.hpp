@@ -180,7 +180,9 @@ class Probe {
   void start();
   void stop();
   /// Waits for the running program to end. Throws TimeoutError, or FaultError when it ended by
-  /// a fault.
+  /// a fault. The end is the EventProgramFinished; when that event is lost, GetProgramStatus,
+  /// asked every 250 ms, shows it (then t_device_s is when it was seen, repetitions_done the
+  /// status's repetition).
   ProgramResult wait(std::chrono::milliseconds timeout);
   /// load + start + wait.
   template <class P>

@@ -1,6 +1,7 @@
 // palp::Probe: the public API over a Session.
 #include "palp/probe.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -173,17 +174,33 @@ void Probe::stop() {
 ProgramResult Probe::wait(std::chrono::milliseconds timeout) {
   Session& s = impl_->s();
   const std::uint64_t after = impl_->finished_before_start;
-  if (!s.wait_event(timeout, [&](const detail::EventLog& e) { return e.finished > after; }))
-    throw TimeoutError("the program to finish on " + s.uri() +
-                           " (ProgramStatus: " + std::to_string(program_status().elapsed_us) +
-                           " us elapsed)",
-                       static_cast<double>(timeout.count()) / 1000.0, s.health_snapshot());
-  const detail::EventLog e = s.events();
-  if (e.last_finished.end == proto::ProgramEnd::fault) {
-    const FaultInfo f = e.last_fault;
+  const auto finished = [&](const detail::EventLog& e) { return e.finished > after; };
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::optional<ProgramResult> result;
+  while (!result) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (s.wait_event(std::clamp(left, std::chrono::milliseconds(0), std::chrono::milliseconds(250)), finished)) {
+      result = s.events().last_finished;
+      break;
+    }
+    // EventProgramFinished is a device frame like any other and may be lost: every 250 ms the
+    // program's status says whether it ended (after start() it is running until it does)
+    const proto::ProgramStatus ps = program_status();
+    if (finished(s.events())) {
+      result = s.events().last_finished;
+    } else if (ps.state == proto::ProgramState::finished) {
+      result = ProgramResult{ps.kind, ps.end, status().t_device_s, ps.repetition};
+    } else if (std::chrono::steady_clock::now() >= deadline) {
+      throw TimeoutError("the program to finish on " + s.uri() + " (ProgramStatus: " +
+                             std::to_string(ps.elapsed_us) + " us elapsed)",
+                         static_cast<double>(timeout.count()) / 1000.0, s.health_snapshot());
+    }
+  }
+  if (result->end == proto::ProgramEnd::fault) {
+    const FaultInfo f = fault();
     throw FaultError("the program ended by a fault: " + f.text, static_cast<std::uint16_t>(f.reason));
   }
-  return e.last_finished;
+  return *result;
 }
 
 proto::ProgramStatus Probe::program_status() {
