@@ -1,4 +1,4 @@
-// A Transport between the Probe and the in-process simulator that loses chosen replies and
+// A Transport between the Probe and the in-process simulator that loses chosen replies (or events) and
 // records every request the host sent: the lost reply of issue 17 (item 2) made exact, where
 // palp-sim's drop-frames loses every n-th device frame whatever it is.
 #pragma once
@@ -27,6 +27,8 @@ class LossyLink : public Transport {
     /// Decides for each reply (response flag set) whether it is lost: (request id, seq) -> lose.
     /// Runs on the Probe's I/O thread.
     std::function<bool(proto::MessageId, std::uint16_t)> lose;
+    /// The same for a device-originated frame (an event, a sample batch), by its message id.
+    std::function<bool(proto::MessageId)> lose_unasked;
     int lost = 0;
     /// The request the reply with this seq answers (the last one sent with it).
     proto::MessageId request_of(std::uint16_t seq) {
@@ -75,9 +77,11 @@ class LossyLink : public Transport {
     bool lose = false;
     proto::FrameReader one;
     one.feed(partial_.data(), partial_.size(), [&](const proto::Frame& f) {
-      if ((f.header.flags & proto::kFlagResponse) == 0) return;
       std::lock_guard lock(log_->mu);
-      lose = log_->lose && log_->lose(log_->request_of(f.header.seq), f.header.seq);
+      if ((f.header.flags & proto::kFlagResponse) == 0)
+        lose = log_->lose_unasked && log_->lose_unasked(static_cast<proto::MessageId>(f.header.id));
+      else
+        lose = log_->lose && log_->lose(log_->request_of(f.header.seq), f.header.seq);
       log_->lost += lose;
     }, [](proto::Reject) {});
     if (!lose) ready_.insert(ready_.end(), partial_.begin(), partial_.end());

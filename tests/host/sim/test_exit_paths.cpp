@@ -101,6 +101,21 @@ TEST(ExitPaths, ALostProgramStartReplyIsATimeoutAfterOneCopy) {
   EXPECT_EQ(again.status().i_cmd_A, 0.0);
 }
 
+TEST(ExitPaths, AProgramWhoseFinishedEventIsLostEndsByItsStatusNotATimeout) {
+  InprocSimulator sim;
+  auto log = std::make_shared<LossyLink::Log>();
+  log->lose_unasked = [](MessageId id) { return id == MessageId::EventProgramFinished; };
+  palp::Probe probe(std::make_unique<LossyLink>(sim.transport(), log), quick());
+  palp::HoldProgram h;
+  h.current_A = 0.2f;
+  h.duration_s = 0.5f;
+  const palp::ProgramResult r = probe.run(h, 20s);  // the status is asked every 250 ms
+  EXPECT_EQ(r.kind, palp::proto::ProgramKind::hold);
+  EXPECT_EQ(r.end, palp::proto::ProgramEnd::completed);
+  std::lock_guard lock(log->mu);
+  EXPECT_EQ(log->lost, 1);  // the event did come, and was lost
+}
+
 TEST(ExitPaths, AnIndentationWhoseFloatStartReplyIsLostThrowsAndLeavesNoProgramAnd0A) {
   InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
   auto log = std::make_shared<LossyLink::Log>();
