@@ -83,6 +83,7 @@ int indent(const Context& ctx, const IndentCli& o) {
   if (!o.overwrite && std::filesystem::exists(dir))
     throw palp::ConfigError(o.out_dir + " already exists; choose another --out-dir, or pass "
                             "--overwrite to replace it");
+  palp::check_replaceable(dir);  // --overwrite replaces only a result directory palp wrote
   auto probe = ctx.connect();
   catch_interrupts();  // Ctrl-C stops the ramp and keeps what was recorded
   const double rate = settings.stream_rate_Hz;

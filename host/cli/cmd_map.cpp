@@ -2,6 +2,7 @@
 // palpctl analyze map: a saved map's stiffness grid and the soft and stiff lines in it.
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 
@@ -81,6 +82,7 @@ int map(const Context& ctx, const MapCli& o) {
   if (o.repetitions > 0) options.settings.repetitions = o.repetitions;
   options.resume = o.resume;
   palp::Probe probe = ctx.connect(rig.probe_uri);
+  if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
@@ -105,7 +107,10 @@ int map(const Context& ctx, const MapCli& o) {
               << " points; the arm is at the safe height and the coil current is zero.\n"
               << "resume with: palpctl map --rig " << o.rig << " --plan " << o.plan << " --out-dir " << o.out_dir
               << " --resume\n";
-    return interrupted() ? kInterrupted : kRuntime;
+    if (interrupted()) return kInterrupted;
+    // the error that stopped it decides the exit code, as it would had it not been caught
+    if (m.stopped_error) std::rethrow_exception(m.stopped_error);
+    return kRuntime;
   }
   return kOk;
 }

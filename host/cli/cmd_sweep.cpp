@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "palp/identification_result.hpp"
+#include "palp/result.hpp"
 #include "sweep_options.hpp"
 
 namespace palpctl {
@@ -22,6 +23,7 @@ int sweep(const Context& ctx, const SweepCli& o, bool free_air) {
   if (!o.out_dir.empty() && !o.overwrite && std::filesystem::exists(dir))
     throw palp::ConfigError(o.out_dir + " already exists; choose another --out-dir, or pass "
                             "--overwrite to replace it");
+  if (!o.out_dir.empty()) palp::check_replaceable(dir);  // --overwrite replaces only palp's own
   auto probe = ctx.connect();
   const std::uint32_t rate = probe.params().control_rate_Hz;
   settings.check_excitation(rate);  // before anything moves

@@ -2,6 +2,7 @@
 // after Ctrl-C or a crash. palpctl touch-off: register the work object with three touches.
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 
@@ -45,6 +46,7 @@ int trace(const Context& ctx, const TraceCli& o) {
   std::filesystem::create_directories(dir);
 
   palp::Probe probe = ctx.connect(rig.probe_uri);
+  if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
@@ -93,7 +95,10 @@ int trace(const Context& ctx, const TraceCli& o) {
               << " points; the arm is at the safe height and the coil current is zero.\n"
               << "resume with: palpctl trace --rig " << o.rig << " --plan " << o.plan << " --out-dir "
               << o.out_dir << " --resume\n";
-    return interrupted() ? kInterrupted : kRuntime;
+    if (interrupted()) return kInterrupted;
+    // the error that stopped it decides the exit code, as it would had it not been caught
+    if (s.stopped_error) std::rethrow_exception(s.stopped_error);
+    return kRuntime;
   }
   return kOk;
 }

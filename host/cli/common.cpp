@@ -104,6 +104,15 @@ int run_guarded(const Context& ctx, const std::function<int()>& action) {
   }
 }
 
+void recover_for_resume(palp::Probe& probe) {
+  const palp::Status st = probe.make_safe();
+  if (st.fault != palp::proto::FaultReason::heartbeat_timeout) return;
+  probe.clear_fault();
+  std::cerr << "palpctl: cleared the latched heartbeat_timeout fault: the device's watchdog tripped "
+               "because the previous host stopped sending (it crashed or was killed); the coil is "
+               "at 0 A and no program runs, so the resume goes on\n";
+}
+
 void print_json(const json& j, bool compact) {
   std::cout << (compact ? j.dump() : j.dump(2)) << '\n' << std::flush;
 }
@@ -166,7 +175,8 @@ json to_json(const palp::HealthCounters& h) {
               {"queue_dropped", h.host_queue_dropped},
               {"queue_max", h.host_queue_max},
               {"gaps", h.host_gaps},
-              {"reconnects", h.reconnects}}}};
+              {"reconnects", h.reconnects},
+              {"requests_resent", h.requests_resent}}}};
   if (!h.device_valid) j["device_reason"] = "no Health reply received";
   return j;
 }

@@ -76,6 +76,14 @@ void require_finite_numbers(CLI::App& app);
 /// (and, with --json, an {"error": ...} object on stdout).
 int run_guarded(const Context& ctx, const std::function<int()>& action);
 
+/// Before `map --resume` and `trace --resume`, the state a killed palpctl left: make_safe() stops
+/// a program or contact hold still running, and a latched heartbeat_timeout (the device's
+/// watchdog tripped because that palpctl stopped sending) is cleared, saying so on stderr: the
+/// current is already 0 A and this palpctl's heartbeat runs, so nothing of the instrument is at
+/// fault. Any other latched fault stays set, and the resume then exits 6 naming it (its cause
+/// needs a person: palpctl fault show, then fault clear).
+void recover_for_resume(palp::Probe& probe);
+
 /// Prints a JSON document on stdout (one line per document when `compact`).
 void print_json(const json& j, bool compact = false);
 

@@ -19,7 +19,7 @@ std::string describe(const HealthCounters& h) {
   s << "host rx " << h.host_frames_rx << " rejected " << h.host_rx_rejected << ", samples "
     << h.host_samples_received << " missing " << h.host_samples_missing << " (queue dropped "
     << h.host_queue_dropped << ", queue max " << h.host_queue_max << "), gaps " << h.host_gaps
-    << ", reconnects " << h.reconnects;
+    << ", reconnects " << h.reconnects << ", requests resent " << h.requests_resent;
   return s.str();
 }
 

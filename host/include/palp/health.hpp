@@ -31,6 +31,8 @@ struct HealthCounters {
   std::uint64_t host_queue_max = 0;           ///< deepest the host queue has been
   std::uint64_t host_gaps = 0;                ///< gap records delivered
   std::uint64_t reconnects = 0;               ///< sessions restored after a lost link
+  std::uint64_t requests_resent = 0;          ///< read-only/idempotent requests sent again
+                                              ///< (same seq) because their reply was lost
 };
 
 /// One line: "device rx 12 tx 340 rejected 0, backlog max 3, lost 0 ...; host rx ...".

@@ -21,6 +21,7 @@
 // 0 A first and floats it again.
 #pragma once
 
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -52,6 +53,9 @@ struct StiffnessMap {
   std::size_t resume_index = 0;
   bool complete = false;
   std::string stopped_because;
+  /// The error that stopped the map (null when complete or cancelled), to handle by its kind:
+  /// std::rethrow_exception (palpctl exits with that kind's code). Not in map.json.
+  std::exception_ptr stopped_error;
 };
 
 struct MapProgress {
@@ -67,7 +71,9 @@ struct MapOptions {
   bool resume = false;                 ///< continue the map in the directory
 };
 
-/// Maps plan's grid into `dir` (created; ConfigError if it holds a map and resume is off).
+/// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and
+/// resume is off, or if the result directory of a point still to map exists and palp did not
+/// write it: check_replaceable, result.hpp).
 /// Errors and cancellation end the map as trace_surface does (arm stopped, coil at 0 A, raised
 /// to the safe height) and return it with stopped_because.
 StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,

@@ -20,8 +20,18 @@
 // newest samples and delivers one Gap{source = host_queue} for them as soon as there is room, and
 // counts them in health().host_queue_dropped.
 //
-// Shutdown: the destructor and close() stop any program and the stream, so the device is left
-// with zero coil current, then close the transport.
+// Lost replies: a request that only reads (GetStatus, GetHealth, GetParams, GetCalibration,
+// GetProgramStatus, Ping) or that ends in the same state however often it runs (ProgramStop,
+// StreamStop, Heartbeat, StreamConfigure, SetParams, SetCalibration, Load*) is sent again with
+// the same seq when its reply does not come, at every quarter of its timeout; the first reply
+// answers it (health().requests_resent counts the copies). start_stream() asks the status
+// whether a StreamStart whose Ack was lost was taken. Any other request's lost reply (start(),
+// clear_fault(), commit_calibration()) is a TimeoutError: the protocol has no rule that a device
+// recognises a repeated seq, and a second execution of these differs from the first.
+//
+// Shutdown: the destructor and close() stop any program, a contact hold and the stream
+// (make_safe()), so the device is left with zero coil current, then close the transport; every
+// error path of the SDK's experiments does the same before it propagates.
 #pragma once
 
 #include <chrono>
@@ -170,7 +180,9 @@ class Probe {
   void start();
   void stop();
   /// Waits for the running program to end. Throws TimeoutError, or FaultError when it ended by
-  /// a fault.
+  /// a fault. The end is the EventProgramFinished; when that event is lost, GetProgramStatus,
+  /// asked every 250 ms, shows it (then t_device_s is when it was seen, repetitions_done the
+  /// status's repetition).
   ProgramResult wait(std::chrono::milliseconds timeout);
   /// load + start + wait.
   template <class P>
@@ -217,7 +229,15 @@ class Probe {
   std::int32_t home(double hold_current_A = -0.3, double seconds = 1.0);
   const std::vector<ZeroingRecord>& zeroing() const;
 
-  /// Stops program and stream (zero current) and closes. Safe to call twice. Afterwards info(),
+  /// The safe state, from any state this or an earlier host left: stops any program and a
+  /// contact hold (ProgramStop) and the stream (StreamStop), then reads the status and returns
+  /// it, showing no program running and 0 A commanded. Both stops are resent with the same seq
+  /// when their reply is lost. Throws DeviceError when the status still shows a program or a
+  /// current, and as every request does (a latched fault does not refuse it).
+  Status make_safe();
+
+  /// make_safe() (its errors ignored: a lost link leaves the current to the device's heartbeat
+  /// watchdog) and closes. Safe to call twice. Afterwards info(),
   /// handshake() and uri() still answer; every device call throws ConnectionError. A moved-from
   /// Probe may only be destroyed or assigned to.
   void close();

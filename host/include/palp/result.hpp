@@ -18,7 +18,11 @@
 // Atomicity: the files are written into a hidden sibling directory (`.solid-p3.tmp-<pid>-<n>`),
 // flushed to disk, and the directory is renamed into place: a crash leaves either no result
 // directory or a complete one (and at most a hidden temporary one, which can be deleted).
-// Overwrite::yes moves an existing directory aside first and deletes it after the rename.
+// Overwrite::yes replaces only a directory palp wrote: every result directory holds
+// `.palp-files`, the list of the files palp wrote into it, and an existing directory is replaced
+// only when it has that list and nothing the list does not name (else ConfigError naming the
+// path that is not palp's); it is moved aside, and only the listed files are deleted after the
+// rename.
 //
 // Errors: a missing or malformed result is a RecordingError naming the file (result.json, or the
 // recording) and the problem; wrong arguments (an existing directory without Overwrite::yes, a
@@ -48,6 +52,12 @@ inline constexpr std::string_view kResultFile = "result.json";
 /// Returns the directory's final path.
 std::filesystem::path write_result(const std::filesystem::path& dir, const IndentationRun& run,
                                    Overwrite overwrite = Overwrite::no);
+
+/// Whether a writer with Overwrite::yes may replace `dir`: it is absent, or it is a directory
+/// holding `.palp-files` and nothing that list does not name. Otherwise ConfigError naming the
+/// path that is not palp's (the directory when it has no list, else its first unknown entry).
+/// The writers check it themselves; call it first to refuse before the device moves.
+void check_replaceable(const std::filesystem::path& dir);
 
 /// A result directory read back.
 struct LoadedResult {

@@ -36,13 +36,15 @@ struct WorkObject {
 struct Rig {
   std::string robot_uri;                   ///< "modbus://host:port" (required)
   std::string probe_uri;                   ///< "usb://", "sim://host:port", ... (required)
-  int tool_id = 1;                         ///< the bridge's tool slot for the probe, 1..16
+  int tool_id = 1;                         ///< the bridge's tool slot for the probe, 1..15
+                                           ///< (proto::rb::kMaxTool, the bridge's set_tool range)
   Pose tool_tcp;                           ///< the tip apex at stroke origin, on the flange
   double safe_height_m = 10e-3;            ///< travel height above the work object's surface
                                            ///< (along its -z), > 0 (required in the file)
   double approach_speed_m_per_s = 1e-3;    ///< guarded approach speed
   double travel_speed_m_per_s = 0.02;      ///< linear moves between points
   int contact_input = 1;                   ///< robot digital input wired to the contact line, 1..16
+                                           ///< (proto::rb::kMaxDigitalInput)
   double contact_threshold_m = 0.2e-3;     ///< coil motion that means contact (paper: 200 counts)
   /// Coil current held during the approach so that the coil floats clear of both end stops and
   /// a touch pushes it back. The paper's contact threshold I_c = 0.5 A is the float current
@@ -52,6 +54,11 @@ struct Rig {
   double max_approach_m = 10e-3;           ///< give up after this much approach travel
   double tip_radius_m = 2.5e-3;            ///< the probe tip's sphere (paper: PLA, R = 2.5 mm)
   std::optional<WorkObject> work_object;   ///< written by the touch-off
+
+  /// ConfigError "rig: safe_height_m is nan, not a finite number" for a number that is NaN or
+  /// infinite, else "rig: <key>: <problem>" for one outside the range rig.json takes (the same
+  /// table as the reader). trace_surface, touch_off, map_plan and save_rig call it first.
+  void validate() const;
 };
 
 /// The plan's grid in the work object (SI). Row r (0-based) is at y = y0 + r pitch_y, column c
@@ -75,6 +82,9 @@ struct Plan {
   double y_m(int row) const;
   std::pair<double, double> point_m(int row, int column) const;
   int point_count() const { return grid.rows * grid.columns; }
+  /// ConfigError "plan <name>: grid.pitch_x_m is nan, not a finite number" for a number that is
+  /// NaN or infinite, or a grid outside 1..1000 x 1..1000 (trace_surface and map_plan call it).
+  void validate() const;
 };
 
 /// Read a rig file. Throws ConfigError (also when the file cannot be read).

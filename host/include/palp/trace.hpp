@@ -33,6 +33,7 @@
 // the reason; trace_surface(..., options.resume) continues from there without repeating a point.
 #pragma once
 
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -79,6 +80,9 @@ struct TracedSurface {
   bool complete = false;
   bool normals_from_grid = false;    ///< false: a partial or failed grid, normals = the approach axis
   std::string stopped_because;       ///< empty when complete
+  /// The error that stopped it (null when complete or cancelled), to handle by its kind with
+  /// std::rethrow_exception (palpctl exits with that kind's code). Not in trace.json.
+  std::exception_ptr stopped_error;
 };
 
 struct TraceProgress {

@@ -49,7 +49,17 @@ ContactEvent float_coil(Probe& probe, double current_A, const std::string& hint)
   w.timeout_s = 5.0f;
   probe.load(w);
   probe.start();
-  const auto event = probe.wait_contact(10s);
+  auto event = probe.wait_contact(10s);
+  if (!event) {
+    // the EventContact may be lost (a device frame like any other): the watch's status says
+    // whether it fired; the time and position are then those of the status read after it
+    const proto::ProgramStatus ps = probe.program_status();
+    if (ps.kind == proto::ProgramKind::contact_watch && ps.state == proto::ProgramState::finished &&
+        ps.end == proto::ProgramEnd::contact) {
+      const Status st = probe.status();
+      event = ContactEvent{st.t_device_s, st.encoder_counts, 0, 0};
+    }
+  }
   if (!event)
     throw TimeoutError("the coil to float off its rear stop at " + std::to_string(current_A) +
                            " A (" + hint + ")",

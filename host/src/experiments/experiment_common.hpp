@@ -21,6 +21,23 @@ inline constexpr std::uint32_t kFloatCounts = 500; ///< the coil has left its re
 
 using format::f32;  ///< the shortest decimal of a protocol f32 as a double (0.01f reads 0.01)
 
+/// Runs body() and returns what it returns; when it throws, first puts the probe in its safe
+/// state (Probe::make_safe: no program, no contact hold, 0 A, stream stopped; its own errors
+/// ignored, the heartbeat watchdog is the last resort), then rethrows. Every experiment's entry
+/// point runs under it, so no error path leaves the coil driven.
+template <class F>
+decltype(auto) or_make_safe(Probe& probe, F&& body) {
+  try {
+    return body();
+  } catch (...) {
+    try {
+      probe.make_safe();
+    } catch (...) {
+    }
+    throw;
+  }
+}
+
 /// Waits until the device clock reaches until_s (or cancelled()).
 void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled);
 

@@ -163,9 +163,9 @@ IdentificationSettings identification_settings_from_json(const nlohmann::json& j
   return s;
 }
 
-IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
-                           const IdentifyProgressFn& progress, const std::function<bool()>& cancelled) {
-  settings.validate();
+namespace {
+IdentificationRun identify_unguarded(Probe& probe, const IdentificationSettings& settings,
+                                     const IdentifyProgressFn& progress, const std::function<bool()>& cancelled) {
   IdentificationRun run;
   run.settings = settings;
   run.settings.frf.multisine_discard_periods = settings.discard_periods;
@@ -242,6 +242,13 @@ IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
   report("analysing", 1.0, 0);
   analyze_identification(run);
   return run;
+}
+}  // namespace
+
+IdentificationRun identify(Probe& probe, const IdentificationSettings& settings,
+                           const IdentifyProgressFn& progress, const std::function<bool()>& cancelled) {
+  settings.validate();
+  return experiment::or_make_safe(probe, [&] { return identify_unguarded(probe, settings, progress, cancelled); });
 }
 
 void analyze_identification(IdentificationRun& run) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "experiment_common.hpp"
+#include "finite.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 #include "palp/protocol/program_schedule.hpp"
@@ -34,6 +35,12 @@ proto::LoadRamp ramp_of(const KfCalibrationSettings& s) {
 }  // namespace
 
 void KfCalibrationSettings::validate() const {
+  experiment::require_finite(
+      "K_f calibration settings",
+      {{"start_A", start_A}, {"stop_A", stop_A}, {"step_A", step_A}, {"dwell_s", dwell_s},
+       {"settled_fraction", settled_fraction}, {"k_v_N_per_m", k_v_N_per_m},
+       {"stream_rate_Hz", stream_rate_Hz}, {"anchor.stroke_m", anchor ? anchor->stroke_m : 0.0},
+       {"anchor.kf_N_per_A", anchor ? anchor->kf_N_per_A : 0.0}});
   auto finite = [](double v) { return std::isfinite(v); };
   require_kf(finite(start_A) && start_A > 0 && start_A <= 4,
           "start_A must lie in (0, 4] A (the coil must float off its rear stop)");
@@ -52,9 +59,9 @@ void KfCalibrationSettings::validate() const {
   require_kf(!commit || write, "commit needs write (only the table written to RAM can be committed)");
 }
 
-KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,
-                              const IdentifyProgressFn& progress) {
-  settings.validate();
+namespace {
+KfCalibrationRun calibrate_kf_unguarded(Probe& probe, const KfCalibrationSettings& settings,
+                                        const IdentifyProgressFn& progress) {
   KfCalibrationRun run;
   run.settings = settings;
   auto report = [&](const char* phase, double fraction) {
@@ -129,6 +136,13 @@ KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& setting
                                   {"committed", run.committed}};
   run.recording.sidecar = side;
   return run;
+}
+}  // namespace
+
+KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,
+                              const IdentifyProgressFn& progress) {
+  settings.validate();
+  return experiment::or_make_safe(probe, [&] { return calibrate_kf_unguarded(probe, settings, progress); });
 }
 
 }  // namespace palp

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "experiment_common.hpp"
+#include "finite.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
 
@@ -68,6 +69,17 @@ IdentificationSettings IdentificationSettings::preset(IdentificationPreset p) {
 }
 
 void IdentificationSettings::validate() const {
+  experiment::require_finite(
+      "identification settings",
+      {{"bias_A", bias_A}, {"amplitude_A", amplitude_A}, {"f_lo_Hz", f_lo_Hz}, {"f_hi_Hz", f_hi_Hz},
+       {"step_Hz", step_Hz}, {"settle_min_s", settle_min_s}, {"fundamental_Hz", fundamental_Hz},
+       {"stream_rate_Hz", stream_rate_Hz}, {"settle_s", settle_s}, {"contact_current_A", contact_current_A},
+       {"max_excursion_m", max_excursion_m}, {"frf.force_constant_N_per_A", frf.force_constant_N_per_A},
+       {"frf.stroke_origin_z_m", frf.stroke_origin_z_m}, {"frf.distortion_limit", frf.distortion_limit},
+       {"instrument.m_v_kg", instrument.m_v_kg}, {"instrument.b_v_N_s_per_m", instrument.b_v_N_s_per_m},
+       {"instrument.k_v_N_per_m", instrument.k_v_N_per_m}, {"fit.adequate_cost", fit.adequate_cost}});
+  experiment::require_finite("identification settings", "frf.kf_table_stroke_m", frf.kf_table_stroke_m);
+  experiment::require_finite("identification settings", "frf.kf_table_N_per_A", frf.kf_table_N_per_A);
   auto finite = [](double v) { return std::isfinite(v); };
   require_identification(finite(bias_A) && std::fabs(bias_A) <= 4, "bias_A must lie in -4..4 A");
   require_identification(finite(amplitude_A) && amplitude_A > 0 && std::fabs(bias_A) + amplitude_A <= 4,

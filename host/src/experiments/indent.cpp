@@ -26,11 +26,8 @@ double float_coil(Probe& probe, const IndentationSettings& s, const std::functio
   return probe.status().encoder_counts * kCountM;
 }
 
-}  // namespace
-
-IndentationRun indent(Probe& probe, const IndentationSettings& settings,
-                      const IndentProgressFn& progress, const std::function<bool()>& cancelled) {
-  settings.validate();
+IndentationRun indent_unguarded(Probe& probe, const IndentationSettings& settings,
+                                const IndentProgressFn& progress, const std::function<bool()>& cancelled) {
   IndentationRun run;
   run.settings = settings;
   run.device = probe.info();
@@ -92,6 +89,14 @@ IndentationRun indent(Probe& probe, const IndentationSettings& settings,
 
   analyze_run(run);
   return run;
+}
+
+}  // namespace
+
+IndentationRun indent(Probe& probe, const IndentationSettings& settings,
+                      const IndentProgressFn& progress, const std::function<bool()>& cancelled) {
+  settings.validate();
+  return experiment::or_make_safe(probe, [&] { return indent_unguarded(probe, settings, progress, cancelled); });
 }
 
 analysis::Curve curve_of(const Recording& r) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "experiment_common.hpp"
+#include "finite.hpp"
 #include "palp/error.hpp"
 #include "palp/indent.hpp"
 
@@ -54,6 +55,24 @@ double IndentationSettings::ramp_duration_s() const {
 }
 
 void IndentationSettings::validate() const {
+  const auto& a = analysis;
+  experiment::require_finite(
+      "indentation settings",
+      {{"start_A", start_A}, {"stop_A", stop_A}, {"step_A", step_A}, {"dwell_s", dwell_s},
+       {"displacement_limit_m", displacement_limit_m}, {"stream_rate_Hz", stream_rate_Hz},
+       {"zero_pressure_s", zero_pressure_s}, {"settle_s", settle_s},
+       {"analysis.force_constant_N_per_A", a.force_constant_N_per_A},
+       {"analysis.contact_current_A", a.contact_current_A}, {"analysis.spring_N_per_m", a.spring_N_per_m},
+       {"analysis.tip_radius_m", a.tip_radius_m}, {"analysis.poisson", a.poisson},
+       {"analysis.bias_current_A", a.bias_current_A},
+       {"analysis.thickness.thickness_m", a.thickness ? a.thickness->thickness_m : 0.0},
+       {"analysis.window_lo_m", a.window_lo_m}, {"analysis.window_hi_m", a.window_hi_m},
+       {"analysis.local_half_width_m", a.local_half_width_m},
+       {"analysis.force_noise_N", a.force_noise_N.value_or(0.0)},
+       {"analysis.stroke_origin_z_m", a.stroke_origin_z_m}});
+  experiment::require_finite("indentation settings", "analysis.tangent_depths_m", a.tangent_depths_m);
+  experiment::require_finite("indentation settings", "analysis.kf_table_stroke_m", a.kf_table_stroke_m);
+  experiment::require_finite("indentation settings", "analysis.kf_table_N_per_A", a.kf_table_N_per_A);
   auto finite = [](double v) { return std::isfinite(v); };
   require_indentation(finite(start_A) && std::fabs(start_A) <= 4, "start_A must lie in -4..4 A");
   require_indentation(finite(stop_A) && std::fabs(stop_A) <= 4, "stop_A must lie in -4..4 A");

@@ -62,6 +62,8 @@ class Mapper {
          const MapOptions& o)
       : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
         toucher_(probe, robot, rig_, o.cancelled) {
+    rig.validate();
+    plan.validate();
     if (!rig.work_object)
       throw ConfigError("the rig has no registered work object: run `palpctl touch-off` first");
     if (!plan.work_object.empty() && plan.work_object != rig.work_object->name)
@@ -83,8 +85,9 @@ class Mapper {
     } else {
       if (std::filesystem::exists(file))
         throw ConfigError(file.string() + " exists: resume it, or map into another directory");
-      std::filesystem::create_directories(dir_ / "points");
     }
+    check_points_replaceable(m.resume_index);
+    std::filesystem::create_directories(dir_ / "points");
     m.plan_name = plan_.name;
     m.rows = plan_.grid.rows;
     m.columns = plan_.grid.columns;
@@ -97,6 +100,7 @@ class Mapper {
     m.surface.contact_E_star_Pa = plan_.contact_E_star_Pa;
     m.complete = false;
     m.stopped_because.clear();
+    m.stopped_error = nullptr;
     const std::size_t total = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
     try {
       toucher_.check_cancelled();
@@ -117,6 +121,7 @@ class Mapper {
       toucher_.make_safe_and_raise();
     } catch (const std::exception& e) {
       m.stopped_because = e.what();
+      m.stopped_error = std::current_exception();
       toucher_.make_safe_and_raise();
     }
     finish_surface(m.surface);
@@ -126,6 +131,20 @@ class Mapper {
   }
 
  private:
+  /// Before anything moves: every point still to map whose result directory exists must be one
+  /// palp wrote (a crash after writing it and before recording it in map.json leaves one, and
+  /// it is replaced); anything else there is refused, naming it, and never deleted.
+  void check_points_replaceable(std::size_t from) const {
+    const std::size_t total = static_cast<std::size_t>(plan_.grid.rows) * static_cast<std::size_t>(plan_.grid.columns);
+    for (std::size_t k = from; k < total; ++k)
+      check_replaceable(dir_ / point_dir(static_cast<int>(k) / plan_.grid.columns + 1,
+                                         static_cast<int>(k) % plan_.grid.columns + 1));
+  }
+
+  static std::string point_dir(int row, int column) {
+    return "points/r" + std::to_string(row) + "_c" + std::to_string(column);
+  }
+
   /// The touch floats the coil at the ramp's start current (I_c), so the ramp starts in contact.
   static Rig touch_rig(Rig r, const IndentationSettings& s) {
     r.watch_current_A = s.start_A;
@@ -158,7 +177,7 @@ class Mapper {
     toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
     IndentationRun run = indent(probe_, o_.settings, {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
-    p.result_dir = "points/r" + std::to_string(row) + "_c" + std::to_string(column);
+    p.result_dir = point_dir(row, column);
     write_result(dir_ / p.result_dir, run, Overwrite::yes);
     p.indented = true;
     if (run.analysis) {

@@ -4,9 +4,15 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "palp/error.hpp"
 #include "palp/probe.hpp"
@@ -32,7 +38,52 @@ void fsync_path(const fs::path& p, bool directory) {
   ::close(fd);
 }
 
+/// The names the manifest in dir lists; nullopt when it has none.
+std::optional<std::set<std::string>> manifest_of(const fs::path& dir) {
+  std::ifstream in(dir / kManifestFile);
+  if (!in) return std::nullopt;
+  std::set<std::string> names;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.find('/') == std::string::npos && line != "." && line != "..") names.insert(line);
+  return names;
+}
+
+/// Deletes the files the manifest names, the manifest, and then the directory if nothing else
+/// is left in it (anything else stays where it is).
+void remove_own_files(const fs::path& dir) {
+  std::error_code ec;
+  if (const auto names = manifest_of(dir))
+    for (const std::string& n : *names) fs::remove(dir / n, ec);
+  fs::remove(dir / kManifestFile, ec);
+  fs::remove(dir, ec);  // fails, and keeps it, when it is not empty
+}
+
 }  // namespace
+
+void check_replaceable(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(dir, ec))) return;
+  const std::string tail = ": nothing was replaced; move it away, or choose another directory";
+  if (!fs::is_directory(fs::symlink_status(dir, ec)))
+    throw ConfigError(dir.string() + " is not a directory palp wrote" + tail);
+  const auto names = manifest_of(dir);
+  if (!names)
+    throw ConfigError(dir.string() + " is not a result directory palp wrote (it has no " + kManifestFile +
+                      " listing palp's files)" + tail);
+  std::vector<std::string> unknown;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n != kManifestFile && (!names->count(n) || e.is_directory() || e.is_symlink())) unknown.push_back(n);
+  }
+  if (ec) throw ConfigError(dir.string() + ": cannot list it (" + ec.message() + ")" + tail);
+  if (!unknown.empty()) {
+    std::sort(unknown.begin(), unknown.end());
+    throw ConfigError((dir / unknown.front()).string() + " was not written by palp, so " + dir.string() +
+                      " is not replaced (" + std::to_string(unknown.size()) +
+                      " such entr" + (unknown.size() == 1 ? "y" : "ies") +
+                      "); move it away, or choose another directory");
+  }
+}
 
 void write_text_file(const fs::path& p, const std::string& text) {
   const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -62,6 +113,7 @@ fs::path prepare_result_directory(const fs::path& dir_in, Overwrite overwrite, c
   if (ec) throw RecordingError(dir.parent_path().string(), 0, "cannot create: " + ec.message());
   if (fs::exists(dir) && overwrite == Overwrite::no)
     throw ConfigError(dir_in.string() + " already exists; choose another directory, or overwrite it");
+  check_replaceable(dir);
   return dir;
 }
 
@@ -76,14 +128,21 @@ void write_result_directory(const fs::path& dir, Overwrite overwrite,
   try {
     fs::create_directory(tmp);
     fill(tmp);
+    std::string manifest;
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(tmp)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    for (const std::string& n : names) manifest += n + "\n";
+    write_text_file(tmp / kManifestFile, manifest);
     fsync_path(tmp, true);
     if (fs::exists(dir)) {
       if (overwrite == Overwrite::no)
         throw RecordingError(dir.string(), 0, "appeared while the result was written; not replaced");
+      check_replaceable(dir);  // again: a file may have been added since the writer checked
       const fs::path old = sibling(dir, "old");
       fs::rename(dir, old);
       fs::rename(tmp, dir);
-      fs::remove_all(old, ec);
+      remove_own_files(old);
     } else {
       fs::rename(tmp, dir);
     }

@@ -1,6 +1,8 @@
 // The atomic result directory shared by every experiment's writer (result.hpp describes the
 // guarantee): files are written into a hidden sibling directory, flushed, and the directory is
-// renamed into place; Overwrite::yes moves an existing one aside first and deletes it after.
+// renamed into place. Every result directory holds kManifestFile, the list of the files palp
+// wrote into it; Overwrite::yes replaces only a directory whose every entry that list names
+// (check_replaceable, result.hpp), moves it aside, and deletes only those files.
 #pragma once
 
 #include <filesystem>
@@ -10,15 +12,20 @@
 #include <nlohmann/json.hpp>
 
 #include "palp/recording.hpp"
+#include "palp/result.hpp"
 
 namespace palp {
+
+/// The manifest in every result directory: one file name a line, the files palp wrote there.
+inline constexpr const char* kManifestFile = ".palp-files";
 
 /// Writes text to a new file and flushes it; RecordingError naming the file on failure.
 void write_text_file(const std::filesystem::path& p, const std::string& text);
 
 /// The checks before an experiment's writer builds anything: `dir` made absolute and normal,
 /// naming a directory (else ConfigError "<who>: DIR names no directory"), its parent created,
-/// and an existing `dir` refused without Overwrite::yes. Returns the absolute path.
+/// and an existing `dir` refused without Overwrite::yes, and with it unless check_replaceable
+/// passes. Returns the absolute path.
 std::filesystem::path prepare_result_directory(const std::filesystem::path& dir, Overwrite overwrite,
                                                const char* who);
 
@@ -26,7 +33,8 @@ std::filesystem::path prepare_result_directory(const std::filesystem::path& dir,
 nlohmann::json result_head(const char* experiment);
 
 /// Creates the hidden sibling of `dir` (absolute, normalised), lets `fill` write the files into
-/// it, flushes and renames it to `dir`. On any error the sibling is removed and the error
+/// it, adds the manifest of what fill wrote, flushes and renames it to `dir` (an existing `dir`
+/// is checked again, moved aside, and only its manifest's files are deleted). On any error the sibling is removed and the error
 /// propagates (filesystem errors as RecordingError naming `dir`). The caller has checked
 /// whether `dir` exists when overwrite is Overwrite::no.
 void write_result_directory(const std::filesystem::path& dir, Overwrite overwrite,

@@ -17,6 +17,8 @@ class Tracer {
  public:
   Tracer(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const TraceOptions& o)
       : rig_(rig), plan_(plan), o_(o), toucher_(probe, robot, rig, o.cancelled) {
+    rig.validate();
+    plan.validate();
     if (!rig.work_object)
       throw ConfigError("the rig has no registered work object: run `palpctl touch-off` first");
     if (!plan.work_object.empty() && plan.work_object != rig.work_object->name)
@@ -42,6 +44,7 @@ class Tracer {
     s.contact_E_star_Pa = plan_.contact_E_star_Pa;
     s.complete = false;
     s.stopped_because.clear();
+    s.stopped_error = nullptr;
     try {
       toucher_.check_cancelled();
       toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);  // whatever the coil does, the tip is clear
@@ -62,6 +65,7 @@ class Tracer {
       toucher_.make_safe_and_raise();
     } catch (const std::exception& e) {
       s.stopped_because = e.what();
+      s.stopped_error = std::current_exception();
       toucher_.make_safe_and_raise();
     }
     finish_surface(s);
@@ -98,6 +102,7 @@ TracedSurface trace_surface(Probe& probe, Robot& robot, const Rig& rig, const Pl
 
 Pose touch_off(Probe& probe, Robot& robot, const Rig& rig, const Pose (&start)[3],
                std::optional<double> contact_E_star_Pa, std::function<bool()> cancelled) {
+  rig.validate();
   Toucher toucher(probe, robot, rig, std::move(cancelled));
   analysis::Vec3 apex[3];
   analysis::Vec3 axis = analysis::Vec3::UnitZ();

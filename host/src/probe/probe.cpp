@@ -1,7 +1,10 @@
 // palp::Probe: the public API over a Session.
 #include "palp/probe.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "palp/protocol/stream.hpp"
 #include "probe/probe_impl.hpp"
@@ -171,17 +174,33 @@ void Probe::stop() {
 ProgramResult Probe::wait(std::chrono::milliseconds timeout) {
   Session& s = impl_->s();
   const std::uint64_t after = impl_->finished_before_start;
-  if (!s.wait_event(timeout, [&](const detail::EventLog& e) { return e.finished > after; }))
-    throw TimeoutError("the program to finish on " + s.uri() +
-                           " (ProgramStatus: " + std::to_string(program_status().elapsed_us) +
-                           " us elapsed)",
-                       static_cast<double>(timeout.count()) / 1000.0, s.health_snapshot());
-  const detail::EventLog e = s.events();
-  if (e.last_finished.end == proto::ProgramEnd::fault) {
-    const FaultInfo f = e.last_fault;
+  const auto finished = [&](const detail::EventLog& e) { return e.finished > after; };
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::optional<ProgramResult> result;
+  while (!result) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (s.wait_event(std::clamp(left, std::chrono::milliseconds(0), std::chrono::milliseconds(250)), finished)) {
+      result = s.events().last_finished;
+      break;
+    }
+    // EventProgramFinished is a device frame like any other and may be lost: every 250 ms the
+    // program's status says whether it ended (after start() it is running until it does)
+    const proto::ProgramStatus ps = program_status();
+    if (finished(s.events())) {
+      result = s.events().last_finished;
+    } else if (ps.state == proto::ProgramState::finished) {
+      result = ProgramResult{ps.kind, ps.end, status().t_device_s, ps.repetition};
+    } else if (std::chrono::steady_clock::now() >= deadline) {
+      throw TimeoutError("the program to finish on " + s.uri() + " (ProgramStatus: " +
+                             std::to_string(ps.elapsed_us) + " us elapsed)",
+                         static_cast<double>(timeout.count()) / 1000.0, s.health_snapshot());
+    }
+  }
+  if (result->end == proto::ProgramEnd::fault) {
+    const FaultInfo f = fault();
     throw FaultError("the program ended by a fault: " + f.text, static_cast<std::uint16_t>(f.reason));
   }
-  return e.last_finished;
+  return *result;
 }
 
 proto::ProgramStatus Probe::program_status() {
@@ -237,7 +256,13 @@ StreamInfo Probe::configure_stream(const StreamSettings& st) {
 void Probe::start_stream() {
   Session& s = impl_->s();
   s.stream_started();
-  expect<proto::Ack>(s.request(proto::StreamStart{}, s.default_timeout()), "StreamStart");
+  try {
+    expect<proto::Ack>(s.request(proto::StreamStart{}, s.default_timeout()), "StreamStart");
+  } catch (const TimeoutError&) {
+    // StreamStart is not resent (a copy would restart the stream): a lost Ack is harmless when
+    // the status shows the stream running, and a stream never stops by itself
+    if (!status().streaming) throw;
+  }
 }
 
 void Probe::stop_stream() {
@@ -261,17 +286,34 @@ ClockMapping Probe::clock() const {
   return impl_ && impl_->session ? impl_->session->clock() : ClockMapping{};
 }
 
+Status Probe::make_safe() {
+  Session& s = impl_->s();
+  // ProgramStop ends a running program and drops a contact hold that outlived its watch (the
+  // device acknowledges it in every state, SPEC §10.1); both stops are resent on a lost reply
+  expect<proto::Ack>(s.request(proto::ProgramStop{}, s.default_timeout()), "ProgramStop");
+  expect<proto::Ack>(s.request(proto::StreamStop{}, s.default_timeout()), "StreamStop");
+  s.stream_stopped();
+  // the set-point is 0 A from the device's next control tick: read until the status shows it
+  const auto until = std::chrono::steady_clock::now() + s.default_timeout();
+  for (;;) {
+    const Status st = status();
+    const bool running = st.program_state == proto::ProgramState::running;
+    if (!running && st.i_cmd_A == 0.0) return st;
+    if (std::chrono::steady_clock::now() > until)
+      throw ProtocolError("the device acknowledged ProgramStop but still reports " +
+                          (running ? std::string("a running program")
+                                   : "a commanded current of " + std::to_string(st.i_cmd_A) + " A"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 void Probe::close() {
   if (!impl_ || !impl_->session) return;
   Session& s = *impl_->session;
-  // leave the device with zero current: stop whatever runs, then the stream
-  const auto t = std::min(s.default_timeout(), std::chrono::milliseconds(1000));
+  // leave the device with zero current whatever state this connection left it in; a request
+  // that fails here (the link is gone) leaves it to the device's heartbeat watchdog
   try {
-    if (status().program_state == proto::ProgramState::running) s.request(proto::ProgramStop{}, t);
-  } catch (const Error&) {
-  }
-  try {
-    s.request(proto::StreamStop{}, t);
+    make_safe();
   } catch (const Error&) {
   }
   s.shutdown();

@@ -13,6 +13,9 @@ namespace {
 /// Streams `channels` at 1 kHz for `seconds` and returns the samples; refuses while the
 /// application's own stream runs (the helper would steal its samples).
 std::vector<Sample> collect(Probe& p, std::uint16_t channels, double seconds, const char* what) {
+  if (!(std::isfinite(seconds) && seconds > 0 && seconds <= 600))
+    throw ConfigError(std::string(what) + ": seconds must be a finite number in (0, 600] s (got " +
+                      std::to_string(seconds) + ")");
   if (p.status().streaming)
     throw ConfigError(std::string(what) + ": stop the stream first (the helper streams on its own)");
   p.configure_stream({.rate_Hz = 1000.0, .channels = channels, .batch_samples = 0});
@@ -39,8 +42,12 @@ void require_idle(Probe& p, const char* what) {
   const Status st = p.status();
   if (st.program_state == proto::ProgramState::running)
     throw ConfigError(std::string(what) + ": a program is running; stop it first");
-  if (st.fault != proto::FaultReason::none)
-    throw ConfigError(std::string(what) + ": the fault latch is set; read and clear the fault first");
+  if (st.fault != proto::FaultReason::none) {
+    const char* reason = proto::enum_name(st.fault);
+    throw FaultError(std::string(what) + ": the fault latch is set (" + (reason ? reason : "unknown") +
+                         "); find its cause, then clear it (palpctl fault clear)",
+                     static_cast<std::uint16_t>(st.fault));
+  }
 }
 
 }  // namespace
@@ -86,6 +93,9 @@ std::vector<double> Probe::zero_pressure(double seconds) {
 }
 
 std::int32_t Probe::home(double hold_current_A, double seconds) {
+  if (!std::isfinite(hold_current_A) || !std::isfinite(seconds))
+    throw ConfigError(std::string("home: ") + (std::isfinite(hold_current_A) ? "seconds" : "hold_current_A") +
+                      " is not a finite number");
   require_idle(*this, "home");
   if (!(hold_current_A < 0))
     throw ConfigError("home: hold_current_A must be negative (it pulls the coil toward -z, "

@@ -162,6 +162,7 @@ HealthCounters Session::health_snapshot() const {
     h.host_frames_rx = reader_counters_[proto::Reject::ok];
     h.host_rx_rejected = reader_counters_.rejected() + assembler_.rejected();
     h.reconnects = reconnects_;
+    h.requests_resent = resends_;
   }
   queue_.count_into(h);
   return h;

@@ -38,6 +38,31 @@ struct EventLog {
   FaultInfo last_fault;
 };
 
+/// Requests sent again, with the same seq, when their reply does not come: those that only read,
+/// and those that leave the device in the same state however often it executes them (a stop; a
+/// load, a configuration or a setting with the same values: refused busy by every copy when a
+/// program or the stream runs, taken by every copy otherwise). SPEC §4.2 and §6.2 give no rule
+/// that a device recognises a repeated seq (and answers it from a cache without executing it
+/// again), so a request whose second execution differs from the first is sent once:
+/// ProgramStart (a copy is refused busy), StreamStart (a copy restarts the stream), FaultClear
+/// (a copy could clear a fault that tripped in between), CommitCalibration (a second flash
+/// write), EnterBootloader. Its lost reply is a TimeoutError (Probe::start_stream asks the
+/// status whether it was taken).
+template <class Req>
+inline constexpr bool kResendable =
+    std::is_same_v<Req, proto::GetStatus> || std::is_same_v<Req, proto::GetHealth> ||
+    std::is_same_v<Req, proto::GetParams> || std::is_same_v<Req, proto::GetCalibration> ||
+    std::is_same_v<Req, proto::GetProgramStatus> || std::is_same_v<Req, proto::GetDeviceInfo> ||
+    std::is_same_v<Req, proto::Ping> || std::is_same_v<Req, proto::Heartbeat> ||
+    std::is_same_v<Req, proto::ProgramStop> || std::is_same_v<Req, proto::StreamStop> ||
+    std::is_same_v<Req, proto::StreamConfigure> || std::is_same_v<Req, proto::SetParams> ||
+    std::is_same_v<Req, proto::SetCalibration> || std::is_same_v<Req, proto::LoadHold> ||
+    std::is_same_v<Req, proto::LoadRamp> || std::is_same_v<Req, proto::LoadSine> ||
+    std::is_same_v<Req, proto::LoadSweep> || std::is_same_v<Req, proto::LoadMultisine> ||
+    std::is_same_v<Req, proto::LoadContactWatch>;
+/// How often a resendable request goes out within its timeout (every timeout / kSendAttempts).
+inline constexpr int kSendAttempts = 4;
+
 class Session {
  public:
   /// Opens the transport the URI names; a lost link reopens it (ConnectOptions::reconnect).
@@ -46,8 +71,11 @@ class Session {
   Session(std::unique_ptr<Transport> transport, const ConnectOptions& options);
   ~Session();
 
-  /// Sends a request and waits for its reply. A Nak becomes DeviceError; no reply in time,
-  /// TimeoutError; a lost link, ConnectionError.
+  /// Sends a request and waits for its reply. A floating-point field that is not finite is a
+  /// ConfigError naming it, before anything is sent. A Nak becomes DeviceError; no reply in time,
+  /// TimeoutError; a lost link, ConnectionError. A kResendable request whose reply is lost is
+  /// sent again with the same seq at every timeout / kSendAttempts (the whole wait stays
+  /// `timeout`); the first reply with that seq answers it, later copies count as stray.
   template <class Req>
   Reply request(const Req& m, std::chrono::milliseconds timeout);
 
@@ -127,6 +155,7 @@ class Session {
   bool device_health_valid_ = false;
   std::uint64_t reconnects_ = 0;
   std::uint64_t stray_replies_ = 0;
+  std::uint64_t resends_ = 0;  // copies of resendable requests sent (guarded by mu_)
   ClockFit clock_;
   StreamAssembler assembler_;
   std::optional<proto::StreamConfigure> stream_config_;

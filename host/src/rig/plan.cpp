@@ -1,6 +1,7 @@
 // plan.json: a grid (origin + pitch, or a region with n x m points) in a named work object.
 #include <cmath>
 
+#include "experiments/finite.hpp"
 #include "json_fields.hpp"
 #include "palp/error.hpp"
 #include "palp/rig.hpp"
@@ -44,6 +45,17 @@ double Plan::y_m(int row) const {
 
 std::pair<double, double> Plan::point_m(int row, int column) const {
   return {x_m(column), y_m(row)};
+}
+
+void Plan::validate() const {
+  const std::string who = "plan " + name;
+  experiment::require_finite(who, {{"grid.x0_m", grid.x0_m}, {"grid.y0_m", grid.y0_m},
+                                   {"grid.pitch_x_m", grid.pitch_x_m}, {"grid.pitch_y_m", grid.pitch_y_m},
+                                   {"contact_E_star_Pa", contact_E_star_Pa.value_or(1.0)},
+                                   {"approach_speed_m_per_s", approach_speed_m_per_s.value_or(1.0)}});
+  if (grid.rows < 1 || grid.rows > 1000 || grid.columns < 1 || grid.columns > 1000)
+    throw ConfigError(who + ": a " + std::to_string(grid.rows) + " x " + std::to_string(grid.columns) +
+                      " grid; rows and columns must lie in 1..1000");
 }
 
 Plan parse_plan(std::string_view text, std::string_view source) {

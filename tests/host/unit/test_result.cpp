@@ -161,14 +161,52 @@ TEST_F(ResultDir, AnExistingDirectoryIsRefusedUnlessOverwriteAndThenReplacedWhol
   } catch (const palp::ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("already exists"));
   }
-  std::ofstream(dir / "stray.txt") << "from the old result";
   run.settings.repetitions = 7;  // only to tell the two apart
   palp::write_result(dir, run, palp::Overwrite::yes);
-  EXPECT_FALSE(fs::exists(dir / "stray.txt"));
   EXPECT_EQ(palp::load_result(dir).summary["parameters"]["reps"], 7);
+  // the manifest names exactly the files palp wrote
+  std::ifstream manifest(dir / ".palp-files");
+  std::string text((std::istreambuf_iterator<char>(manifest)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "indentation.csv\nindentation.json\nresult.json\n");
   // nothing hidden left beside it
   for (const auto& e : fs::directory_iterator(root_))
     EXPECT_EQ(e.path().filename(), "r") << "left behind: " << e.path();
+}
+
+TEST_F(ResultDir, OverwriteKeepsAFileItDidNotWriteAndNamesIt) {
+  palp::IndentationRun run = synthetic_run();
+  const fs::path dir = root_ / "r";
+  palp::write_result(dir, run);
+  std::ofstream(dir / "notes.txt") << "the user's";
+  run.settings.repetitions = 7;
+  try {
+    palp::write_result(dir, run, palp::Overwrite::yes);
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr((dir / "notes.txt").string() + " was not written by palp"));
+  }
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  EXPECT_EQ(palp::load_result(dir).summary["parameters"]["reps"], 2);  // the old result, whole
+  fs::remove(dir / "notes.txt");
+  palp::write_result(dir, run, palp::Overwrite::yes);
+  EXPECT_EQ(palp::load_result(dir).summary["parameters"]["reps"], 7);
+}
+
+TEST_F(ResultDir, OverwriteRefusesADirectoryPalpNeverWroteAndKeepsItsFiles) {
+  const fs::path dir = root_ / "mine";
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "result.json") << "{}";  // even one named like palp's
+  std::ofstream(dir / "sub" / "data.txt") << "the user's";
+  try {
+    palp::write_result(dir, synthetic_run(), palp::Overwrite::yes);
+    FAIL() << "no ConfigError";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(dir.string() + " is not a result directory palp wrote"));
+  }
+  EXPECT_TRUE(fs::exists(dir / "sub" / "data.txt"));
+  EXPECT_TRUE(fs::exists(dir / "result.json"));
+  EXPECT_THROW(palp::check_replaceable(dir), palp::ConfigError);
+  EXPECT_NO_THROW(palp::check_replaceable(root_ / "absent"));
 }
 
 TEST_F(ResultDir, AnUnbondedThicknessCorrectionIsReadBackAsUnbonded) {
@@ -288,6 +326,8 @@ TEST(IndentationSettings, BadSettingsAreOneLineConfigErrorsNamingTheSetting) {
   EXPECT_EQ(message([](auto& s) { s.repetitions = 0; }),
             "indentation settings: repetitions must lie in 1..1000");
   EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = NAN; }),
+            "indentation settings: displacement_limit_m is nan, not a finite number");
+  EXPECT_EQ(message([](auto& s) { s.displacement_limit_m = 0.2; }),
             "indentation settings: displacement_limit_m must lie in 0..0.1 m (0: no limit)");
   EXPECT_EQ(message([](auto&) {}), "valid");
 }

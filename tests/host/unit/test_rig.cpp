@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "palp/error.hpp"
+#include "palp/protocol/robot_bridge/check.hpp"
+#include "robot/robot_convert.hpp"
 
 namespace palp {
 namespace {
@@ -157,6 +159,21 @@ TEST(Rig, BadFilesGiveOneLineWithFileKeyAndProblem) {
   EXPECT_EQ(rig_error("[1, 2]"), "rig.json: the top level must be a JSON object");
   EXPECT_EQ(error_of([] { load_rig("/nonexistent/rig.json"); }),
             "/nonexistent/rig.json: cannot read the file");
+}
+
+// One range for tool_id: the rig reader takes exactly the ids the bridge's set_tool takes (the
+// reader said 1..16, the bridge 1..15, so 16 passed the rig check and failed at run time).
+TEST(Rig, ToolIdTakesExactlyTheIdsTheBridgeTakes0And16Refused) {
+  const std::string t = kMinimalRig;
+  for (const int id : {0, 1, 15, 16}) {
+    const std::string text = t.substr(0, t.size() - 1) + ", \"tool_id\": " + std::to_string(id) + "}";
+    const bool rig_takes = error_of([&] { parse_rig(text, "rig.json"); }) == "(no error)";
+    const bool bridge_takes = proto::rb::check_command(detail::tool_command(id, Pose{})).accepted();
+    EXPECT_EQ(rig_takes, id >= 1 && id <= 15) << id;
+    EXPECT_EQ(rig_takes, bridge_takes) << id;
+  }
+  EXPECT_EQ(error_of([&] { parse_rig(t.substr(0, t.size() - 1) + R"(, "tool_id": 16})", "rig.json"); }),
+            "rig.json: tool_id: must be in 1..15 (got 16)");
 }
 
 TEST(Rig, JsonSyntaxErrorNamesLineAndColumn) {
