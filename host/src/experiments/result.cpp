@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "palp/result.hpp"
 #include "result_dir.hpp"
@@ -65,17 +66,21 @@ LoadedResult load_result(const fs::path& dir) {
   const fs::path file = dir / kResultFile;
   const std::string name = file.string();
   if (!fs::is_directory(dir)) throw RecordingError(name, 0, "no such result directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw RecordingError(name, 0, "no result.json: not a result directory (or unreadable)");
-  std::stringstream text;
-  text << in.rdbuf();
+  if (!fs::exists(file))
+    throw RecordingError(name, 0, "no result.json: not a result directory (or unreadable)");
+  const std::string text = format::read_bounded_or(
+      file, format::kMaxJsonFileBytes,
+      [&](const std::string& problem) -> void { throw RecordingError(name, 0, problem); });
   try {
-    r.summary = json::parse(text.str());
+    r.summary = json::parse(text);
   } catch (const json::parse_error& e) {
     // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." names the place
     const std::string what = e.what();
     const auto at = what.find("parse error");
-    throw RecordingError(name, 0, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at)));
+    throw RecordingError(name, 0, "invalid JSON: " + format::escaped(at == std::string::npos
+                                                                        ? what
+                                                                        : what.substr(at),
+                                                                    4 * format::kQuoteChars));
   }
   if (!r.summary.is_object()) throw RecordingError(name, 0, "not a JSON object");
   const json& schema = need(r.summary, "schema", name);

@@ -8,6 +8,7 @@
 #include "palp/error.hpp"
 #include "palp/trace.hpp"
 #include "format/field_table.hpp"
+#include "format/text_input.hpp"
 #include "trace_json.hpp"
 
 namespace palp {
@@ -103,14 +104,14 @@ void write_json_atomically(const std::filesystem::path& file, const json& j) {
 }
 
 json read_json_file(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file.string() + ": cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  const std::string text = format::read_bounded_or(
+      file, format::kMaxJsonFileBytes,
+      [&](const std::string& problem) -> void { throw ConfigError(file.string() + ": " + problem); });
   try {
-    return json::parse(ss.str());
+    return json::parse(text);
   } catch (const json::parse_error& e) {
-    throw ConfigError(file.string() + ": not JSON (" + e.what() + ")");
+    throw ConfigError(file.string() + ": not JSON (" +
+                      format::escaped(e.what(), 4 * format::kQuoteChars) + ")");
   }
 }
 
