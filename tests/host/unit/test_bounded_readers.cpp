@@ -149,6 +149,6 @@ TEST(BoundedReaders, JsonErrorsQuoteAtMost240BytesOfTheFileEscaped) {
     for (const char c : problem) EXPECT_GE(static_cast<unsigned char>(c), 0x20);
   }
   const auto rig = dir / "rig.json";
-  write_text(rig, "{\"a\x1b[2Jb\": 1}");
-  EXPECT_EQ(config_error_of(rig), rig.string() + ": a\\x1b[2Jb: unknown key");
+  write_text(rig, R"({"a\u001b[2Jb\u00b5": 1})");  // an escape sequence and a µ in a key
+  EXPECT_EQ(config_error_of(rig), rig.string() + ": a\\x1b[2Jb\\xc2\\xb5: unknown key");
 }
