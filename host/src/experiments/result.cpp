@@ -85,7 +85,7 @@ LoadedResult load_result(const fs::path& dir) {
   if (!r.summary.is_object()) throw RecordingError(name, 0, "not a JSON object");
   const json& schema = need(r.summary, "schema", name);
   if (!schema.is_string() || schema.get<std::string>() != kResultSchema)
-    throw RecordingError(name, 0, "schema is " + schema.dump() + ", expected \"" +
+    throw RecordingError(name, 0, "schema is " + format::escaped(schema.dump()) + ", expected \"" +
                                       std::string(kResultSchema) + "\"");
   const json& experiment = need(r.summary, "experiment", name);
   if (!experiment.is_string()) throw RecordingError(name, 0, "\"experiment\" is not a string");
@@ -95,7 +95,7 @@ LoadedResult load_result(const fs::path& dir) {
   for (const json& f : recordings) {
     if (!f.is_string() || f.get<std::string>().empty() ||
         fs::path(f.get<std::string>()).has_parent_path())
-      throw RecordingError(name, 0, "\"recordings\" holds " + f.dump() +
+      throw RecordingError(name, 0, "\"recordings\" holds " + format::escaped(f.dump()) +
                                         ", not a file name inside the result directory");
     const fs::path csv = dir / f.get<std::string>();
     if (!fs::exists(csv)) throw RecordingError(csv.string(), 0, "listed in result.json but missing");
@@ -107,7 +107,7 @@ LoadedResult load_result(const fs::path& dir) {
 IndentationRun indentation_run_of(const LoadedResult& result) {
   const std::string name = (result.dir / kResultFile).string();
   if (result.experiment != "indentation")
-    throw RecordingError(name, 0, "experiment is \"" + result.experiment + "\", not an indentation");
+    throw RecordingError(name, 0, "experiment is " + format::quoted(result.experiment) + ", not an indentation");
   if (result.recordings.empty()) throw RecordingError(name, 0, "lists no recording");
   IndentationRun run;
   try {

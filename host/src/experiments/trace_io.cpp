@@ -116,7 +116,7 @@ json read_json_file(const std::filesystem::path& file) {
 }
 
 TracedSurface trace_from_json(const json& j, const std::string& f) {
-  if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
+  if (!has_format(j, "palp.trace/1"))
     throw ConfigError(f + ": not a trace (\"format\" is not \"palp.trace/1\")");
   TracedSurface s;
   format::read_fields(format::JsonSource(j, f), s, kSurfaceFields);
@@ -141,7 +141,7 @@ void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
 
 TracedSurface load_trace(const std::filesystem::path& file) {
   const json j = detail::read_json_file(file);
-  if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
+  if (!detail::has_format(j, "palp.trace/1"))
     throw ConfigError(file.string() + ": not a trace file (\"format\" is not \"palp.trace/1\")");
   return detail::trace_from_json(j, file.string());
 }
