@@ -23,7 +23,7 @@ json read_json_file(const std::string& file, const char* option) {
       });
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     throw palp::RecordingError(file, 0, std::string("not JSON (") + option + "): " +
                                             palp::format::escaped(e.what(), 240));
   }

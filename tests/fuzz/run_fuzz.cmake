@@ -5,6 +5,7 @@
 #                  -DSEEDER=palp_fuzz_seeds -DDOCS=a.md|b.md             (fenced blocks of docs)
 #                  -DSEEDER=palp_fuzz_seeds -DREGISTERS=robot_bridge.txt (register blocks)
 #                  -DSEED_DIR=dir                                         (files as they are)
+#   -DREGRESSIONS=dir: the inputs earlier campaigns found defects with, run first (when it exists)
 # The environment overrides for a campaign (scripts/fuzz-campaign): PALP_FUZZ_SECONDS,
 # PALP_FUZZ_RUNS (default: no limit). A crash leaves its input in WORK as crash-* and fails.
 if(NOT EXISTS "${FUZZER}")
@@ -41,9 +42,11 @@ endif()
 if(REGISTERS)
   seed_step("${SEEDER}" registers "${WORK}/seeds" "${REGISTERS}")
 endif()
-if(SEED_DIR)
-  file(COPY "${SEED_DIR}/" DESTINATION "${WORK}/seeds")
-endif()
+foreach(dir IN ITEMS "${SEED_DIR}" "${REGRESSIONS}")
+  if(dir AND IS_DIRECTORY "${dir}")
+    file(COPY "${dir}/" DESTINATION "${WORK}/seeds")
+  endif()
+endforeach()
 
 execute_process(COMMAND "${FUZZER}" -max_total_time=${SECONDS} -runs=${runs} -timeout=10
                         -rss_limit_mb=2048 -max_len=${MAX_LEN} -print_final_stats=1

@@ -73,7 +73,7 @@ LoadedResult load_result(const fs::path& dir) {
       [&](const std::string& problem) -> void { throw RecordingError(name, 0, problem); });
   try {
     r.summary = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." names the place
     const std::string what = e.what();
     const auto at = what.find("parse error");

@@ -109,7 +109,7 @@ json read_json_file(const std::filesystem::path& file) {
       [&](const std::string& problem) -> void { throw ConfigError(file.string() + ": " + problem); });
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     throw ConfigError(file.string() + ": not JSON (" +
                       format::escaped(e.what(), 4 * format::kQuoteChars) + ")");
   }

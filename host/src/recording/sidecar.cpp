@@ -270,6 +270,9 @@ Sidecar read_sidecar(const std::filesystem::path& json_path) {
     throw RecordingError(file, line,
                          "not valid JSON at column " + std::to_string(column) + ": " +
                              format::escaped(what, 4 * format::kQuoteChars));
+  } catch (const json::exception& e) {  // out_of_range: a number beyond a double (1e999)
+    throw RecordingError(file, 0,
+                         "not valid JSON: " + format::escaped(e.what(), 4 * format::kQuoteChars));
   }
   return sidecar_from_json(doc, file);
 }

@@ -44,6 +44,9 @@ Fields::Fields(std::string_view text, std::string source, const std::vector<std:
     throw ConfigError(source_ + ":" + std::to_string(line) + ":" + std::to_string(column) +
                       ": JSON syntax error: " +
                       format::escaped(short_reason(e.what()), 4 * format::kQuoteChars));
+  } catch (const nlohmann::json::exception& e) {  // out_of_range: a number beyond a double
+    throw ConfigError(source_ + ": JSON error: " +
+                      format::escaped(e.what(), 4 * format::kQuoteChars));
   }
   if (!json_.is_object()) throw ConfigError(source_ + ": the top level must be a JSON object");
   for (const auto& item : json_.items()) {

@@ -12,6 +12,8 @@
 #include "palp/analysis/frf_table.hpp"
 #include "palp/error.hpp"
 #include "palp/recording.hpp"
+#include "palp/result.hpp"
+#include "palp/trace.hpp"
 #include "palp/rig.hpp"
 #include "test_recording_util.hpp"
 
@@ -151,4 +153,31 @@ TEST(BoundedReaders, JsonErrorsQuoteAtMost240BytesOfTheFileEscaped) {
   const auto rig = dir / "rig.json";
   write_text(rig, R"({"a\u001b[2Jb\u00b5": 1})");  // an escape sequence and a µ in a key
   EXPECT_EQ(config_error_of(rig), rig.string() + ": a\\x1b[2Jb\\xc2\\xb5: unknown key");
+}
+
+// Found by fuzz_sidecar_json: nlohmann throws out_of_range, not parse_error, for a number beyond
+// a double, and the readers caught only parse_error (the exception left palpctl unexplained).
+TEST(JsonReaders, ANumberBeyondADoubleIsAJsonErrorNamingTheFile) {
+  TempDir dir;
+  const std::string overflow = "[json.exception.out_of_range.406] number overflow parsing '1e999'";
+  const auto sidecar = dir / "run.json";
+  write_text(sidecar, "{\"schema\": 1e999}");
+  expect_recording_error([&] { palp::read_sidecar(sidecar); }, sidecar, 0,
+                         "not valid JSON: " + overflow);
+  try {
+    palp::parse_rig("{\"format_version\": 1e999}", "rig.json");
+    ADD_FAILURE() << "no error";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "rig.json: JSON error: " + overflow);
+  }
+  fs::copy_file(sidecar, dir / "trace.json");
+  try {
+    palp::load_trace(dir / "trace.json");
+    ADD_FAILURE() << "no error";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "trace.json").string() + ": not JSON (" + overflow + ")");
+  }
+  fs::copy_file(sidecar, dir / "result.json");
+  expect_recording_error([&] { palp::load_result(dir.path()); }, dir / "result.json", 0,
+                         "invalid JSON: " + overflow);
 }
