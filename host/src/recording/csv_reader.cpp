@@ -1,6 +1,7 @@
 // read_recording: the CSV in 1 MiB chunks, line by line (each at most format::kMaxLineBytes),
 // each cell parsed where it lies (std::from_chars, no copies), every refusal with the file, the
 // line and the problem; then the sidecar, checked against the CSV it claims to describe.
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -29,7 +30,10 @@ class LineReader {
     file_ = std::fopen(path.c_str(), "rb");
     if (file_ == nullptr)
       throw RecordingError(name_, 0, std::string("cannot open: ") + std::strerror(errno));
-    buffer_.resize(1u << 20);
+    // the whole file when it is smaller than the buffer (a small file costs a small buffer)
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    buffer_.resize(ec ? kBuffer : std::clamp<std::size_t>(size + 1, 4096, kBuffer));
   }
   ~LineReader() { std::fclose(file_); }
   LineReader(const LineReader&) = delete;
@@ -78,6 +82,8 @@ class LineReader {
     std::memmove(buffer_.data(), buffer_.data() + pos_, end_ - pos_);
     end_ -= pos_;
     pos_ = 0;
+    // a file that grew, or reported no size: up to kBuffer, which holds any line allowed
+    if (end_ == buffer_.size()) buffer_.resize(std::min(2 * buffer_.size(), kBuffer));
     const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
     if (got == 0) {
       if (std::ferror(file_))
@@ -89,6 +95,8 @@ class LineReader {
     total_bytes_ += got;
   }
 
+  static constexpr std::size_t kBuffer = 1u << 20;
+  static_assert(kBuffer > format::kMaxLineBytes);
   const std::string& name_;
   std::FILE* file_ = nullptr;
   std::string buffer_;
