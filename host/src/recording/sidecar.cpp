@@ -152,8 +152,7 @@ class SidecarParser {
 }  // namespace
 
 std::string rd::json_kind(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  const std::string text = format::escaped(value.dump());  // DEL and UTF-8 pass dump() as they are
   switch (value.type()) {
     case json::value_t::null: return "null";
     case json::value_t::object: return "an object";

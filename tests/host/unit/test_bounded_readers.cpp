@@ -181,3 +181,13 @@ TEST(JsonReaders, ANumberBeyondADoubleIsAJsonErrorNamingTheFile) {
   expect_recording_error([&] { palp::load_result(dir.path()); }, dir / "result.json", 0,
                          "invalid JSON: " + overflow);
 }
+
+// Found by fuzz_sidecar_json: the sidecar reader quoted a wrong value with json::dump, which
+// leaves DEL and every non-ASCII character (C1 controls included) as they are.
+TEST(JsonReaders, ASidecarsWrongValueIsQuotedEscaped) {
+  TempDir dir;
+  const auto sidecar = dir / "run.json";
+  write_text(sidecar, R"("\u007fab\u0085")");
+  expect_recording_error([&] { palp::read_sidecar(sidecar); }, sidecar, 0,
+                         "the sidecar must be a JSON object, not a string (\"\\x7fab\\xc2\\x85\")");
+}
