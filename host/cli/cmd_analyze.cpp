@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -41,25 +40,6 @@ struct BoyleCli {
          tube_length_mm = 500.0, ambient_Pa = palp::analysis::kAmbientPressurePa;
   std::vector<double> channel_length_mm;
 };
-
-/// The 1-based file line of every data row (comments, blank lines and the header skipped), so an
-/// analysis problem can name the lines as the reader does.
-std::vector<std::size_t> data_row_lines(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::vector<std::size_t> lines;
-  std::string s;
-  std::size_t n = 0;
-  bool header = false;
-  while (std::getline(in, s)) {
-    ++n;
-    if (n == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s.erase(0, 3);
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string::npos || s[first] == '#') continue;
-    if (!header) { header = true; continue; }
-    lines.push_back(n);
-  }
-  return lines;
-}
 
 an::IndentationParams params_of(const AnalyzeCli& o) {
   an::IndentationParams p;
@@ -97,7 +77,7 @@ struct Loaded {
 Loaded load(const std::string& file, const an::IndentationParams& p) {
   Loaded l;
   l.rec = palp::read_recording(file);
-  l.lines = data_row_lines(file);
+  l.lines = palp::recording_row_lines(file);
   l.curve = palp::curve_of(l.rec);  // with i_cmd_A when recorded: the staircase's plateaus
   // no contact: name the line with the highest current
   Eigen::Index top = 0;

@@ -2,7 +2,6 @@
 //   analyze sweep --input FILE    a recording (its sidecar gives the program) or a table
 //                                 (f_Hz,re_m_per_N,im_m_per_N or f_Hz,mag_m_per_N,phase_deg)
 //   analyze freeair --omega-n-rad-per-s W --zeta Z --kv-N-per-mm K    m_v and b_v (paper §IV-B)
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -25,27 +24,13 @@ struct AnalyzeSweepCli {
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
 };
 
-/// Whether the file's first line that is neither blank nor a comment starts with "f_Hz".
-bool is_table(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw palp::RecordingError(file, 0, "cannot open");
-  std::string s;
-  while (std::getline(in, s)) {
-    if (s.rfind("\xEF\xBB\xBF", 0) == 0) s.erase(0, 3);
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string::npos || s[first] == '#') continue;
-    return s.compare(first, 4, "f_Hz") == 0;
-  }
-  return false;
-}
-
 int analyze_sweep(const Context& ctx, const AnalyzeSweepCli& a) {
   SweepCli o = a.sweep;
   an::Frf frf;
   std::optional<an::SecondOrderFit> fit;  // a recording's, fitted with the settings it was run with
   std::optional<double> bias;
   bool free_air = a.free_air;
-  if (is_table(o.input)) {
+  if (an::is_frf_table(o.input)) {
     frf = an::read_frf_table(o.input);
     if (a.given("--bias-A")) bias = o.bias_A;
   } else {

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "palp/identification_result.hpp"
 
@@ -16,12 +17,15 @@ namespace an = palp::analysis;
 namespace {
 
 json read_json_file(const std::string& file, const char* option) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw palp::RecordingError(file, 0, std::string("cannot open (") + option + ")");
+  const std::string text = palp::format::read_bounded_or(
+      file, palp::format::kMaxJsonFileBytes, [&](const std::string& problem) -> void {
+        throw palp::RecordingError(file, 0, problem + " (" + option + ")");
+      });
   try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw palp::RecordingError(file, 0, std::string("not JSON (") + option + "): " + e.what());
+    return json::parse(text);
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
+    throw palp::RecordingError(file, 0, std::string("not JSON (") + option + "): " +
+                                            palp::format::escaped(e.what(), 240));
   }
 }
 

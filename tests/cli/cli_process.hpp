@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,6 +25,7 @@ struct ProcessResult {
   int code = -1;  ///< exit code; 128 + signal when killed by one
   std::string out, err;
   bool timed_out = false;
+  long max_rss_kB = 0;  ///< the process's peak resident set (getrusage of the child, wait4)
 };
 
 inline ProcessResult run_process(const std::vector<std::string>& args, double timeout_s = 60) {
@@ -71,7 +73,9 @@ inline ProcessResult run_process(const std::vector<std::string>& args, double ti
   for (auto& q : p)
     if (q.fd >= 0) ::close(q.fd);
   int status = 0;
-  ::waitpid(pid, &status, 0);
+  struct rusage usage {};
+  ::wait4(pid, &status, 0, &usage);
+  r.max_rss_kB = usage.ru_maxrss;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
 }

@@ -242,6 +242,24 @@ TEST_F(AnalyzeDir, BadInputIsOneLineNamingTheFileLineAndProblem) {
                             "(lines 37-41), the fits need at least 10");
 }
 
+TEST_F(AnalyzeDir, AGigabyteWithoutNewlineFailsOnItsFirstLineWithACutEscapedQuoteInTensOfMegabytes) {
+  // a data row of 1 GB: an erase-screen escape, then NUL bytes (a sparse file, nothing written)
+  const std::string f = write_text("huge.csv", "t_s,i_A,z_mm\n\x1b[2J");
+  fs::resize_file(f, 1'000'000'000);
+  std::string nuls;
+  for (int k = 0; k < 56; ++k) nuls += "\\x00";
+  const std::string message = f + ":2: the line is longer than the limit of 65536 bytes (64 KiB) "
+                                  "(it starts \"\\x1b[2J" + nuls + "\u2026\")";
+  expect_input_error(f, message);
+  const auto r = palpctl({"analyze", "indentation", "--input", f}, 20);
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_LT(r.max_rss_kB, 40'000) << "peak RSS of palpctl analyze, kB";
+  const auto sweep = palpctl({"analyze", "sweep", "--input", f}, 20);
+  EXPECT_EQ(sweep.code, 1);
+  EXPECT_EQ(sweep.err, "palpctl: " + message + "\n");
+  EXPECT_LT(sweep.max_rss_kB, 40'000) << "peak RSS of palpctl analyze sweep, kB";
+}
+
 TEST(PalpctlAnalyzeBoyle, PapersShallowAndDeepRisesGive15_5And4_86Mm3) {
   auto r = palpctl({"--json", "analyze", "boyle", "--pressure-change-Pa", "573"});
   ASSERT_EQ(r.code, 0) << r.err;

@@ -86,8 +86,17 @@ struct ReadOptions {
 /// an empty cell; a decimal comma; a cell that is not a number (NaN and infinities included); a
 /// whole-number column holding a fraction or an out-of-range value; t_s decreasing.
 ///
+/// A line longer than 64 KiB is refused as soon as its first 64 KiB are read (memory stays
+/// bounded whatever the file); a message quotes at most 60 bytes of the file, with control and
+/// non-ASCII bytes as \xNN (docs/recording-format.md, "Limits").
+///
 /// Without a rep column, repetitions come from split_repetitions_at_current_minima(i_A).
 Recording read_recording(const std::filesystem::path& csv, const ReadOptions& options = {});
+
+/// The 1-based file line of every data row of a recording CSV, as read_recording numbers them
+/// (comments, blank lines and the header skipped): how an analysis names the lines of a problem.
+/// The same limits and refusals for the file's lines as read_recording.
+std::vector<std::size_t> recording_row_lines(const std::filesystem::path& csv);
 
 // --- writing -----------------------------------------------------------------------------------
 

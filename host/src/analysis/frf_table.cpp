@@ -6,11 +6,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <cstdio>
 #include <numbers>
-#include <sstream>
 #include <vector>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "number_text.hpp"
 
@@ -76,7 +76,9 @@ class TableParser {
       const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
       line = text_.substr(pos_, end - pos_);
       pos_ = end + 1;
-      if (++line_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+      ++line_;
+      if (line.size() + 1 > format::kMaxLineBytes) fail(format::long_line_problem(line));
+      if (line_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
       const std::string_view t = trim(line);
       if (!t.empty() && t.front() != '#') return true;
     }
@@ -103,7 +105,7 @@ class TableParser {
     unknown_header(line);
   }
   [[noreturn]] void unknown_header(std::string_view line) const {
-    fail("unknown header \"" + std::string(trim(line)) + "\"; " + kLayouts);
+    fail("unknown header " + format::quoted(trim(line)) + "; " + kLayouts);
   }
 
   void row(std::string_view line) {
@@ -116,8 +118,8 @@ class TableParser {
     double v[4] = {};
     for (std::size_t c = 0; c < cells.size(); ++c)
       if (!parse_number(cells[c], v[c]))
-        fail("column " + std::string(header_[c]) + ": \"" + std::string(cells[c].substr(0, 40)) +
-             "\" is not a finite number");
+        fail("column " + std::string(header_[c]) + ": " + format::quoted(cells[c]) +
+             " is not a finite number");
     FrfLine l;
     l.f_Hz = v[0];
     if (l.f_Hz <= 0) fail("f_Hz must be positive (got " + detail::number_text(l.f_Hz) + ")");
@@ -167,12 +169,41 @@ Frf parse_frf_table(std::string_view text, const std::string& name) {
 }
 
 Frf read_frf_table(const std::filesystem::path& csv) {
-  std::ifstream in(csv, std::ios::binary);
-  if (!in) throw RecordingError(csv.string(), 0, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw RecordingError(csv.string(), 0, "cannot read the file");
-  return parse_frf_table(content.str(), csv.string());
+  const std::string name = csv.string();
+  const std::string text = format::read_bounded_or(
+      csv, format::kMaxTableFileBytes,
+      [&](const std::string& problem) -> void { throw RecordingError(name, 0, problem); });
+  return parse_frf_table(text, name);
+}
+
+bool is_frf_table(const std::filesystem::path& file) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (f == nullptr)
+    throw RecordingError(file.string(), 0, std::string("cannot open: ") + std::strerror(errno));
+  std::string line;
+  bool table = false, first = true;
+  // a row (neither blank nor a comment) decides; a line is looked at up to kMaxLineBytes
+  const auto decides = [&] {
+    std::string_view t = line;
+    if (first && t.starts_with("\xEF\xBB\xBF")) t.remove_prefix(3);
+    first = false;
+    t = trim(t);
+    if (t.empty() || t.front() == '#') return false;
+    table = t.starts_with("f_Hz");
+    return true;
+  };
+  bool decided = false;
+  for (int c = 0; !decided && (c = std::fgetc(f)) != EOF;) {
+    if (c != '\n' && line.size() < format::kMaxLineBytes) {
+      line += static_cast<char>(c);
+      continue;
+    }
+    decided = decides();
+    line.clear();
+  }
+  if (!decided) decides();  // the last line, without a newline
+  std::fclose(f);
+  return table;
 }
 
 }  // namespace palp::analysis

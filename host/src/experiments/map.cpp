@@ -215,7 +215,7 @@ StiffnessMap load_map(const std::filesystem::path& dir) {
   const std::filesystem::path file = dir / "map.json";
   const json j = detail::read_json_file(file);
   const std::string f = file.string();
-  if (!j.is_object() || j.value("format", std::string{}) != "palp.map/1")
+  if (!detail::has_format(j, "palp.map/1"))
     throw ConfigError(f + ": not a map (\"format\" is not \"palp.map/1\")");
   StiffnessMap m;
   format::read_fields(format::JsonSource(j, f), m, kMapFields);

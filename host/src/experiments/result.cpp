@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "palp/result.hpp"
 #include "result_dir.hpp"
@@ -65,22 +66,26 @@ LoadedResult load_result(const fs::path& dir) {
   const fs::path file = dir / kResultFile;
   const std::string name = file.string();
   if (!fs::is_directory(dir)) throw RecordingError(name, 0, "no such result directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw RecordingError(name, 0, "no result.json: not a result directory (or unreadable)");
-  std::stringstream text;
-  text << in.rdbuf();
+  if (!fs::exists(file))
+    throw RecordingError(name, 0, "no result.json: not a result directory (or unreadable)");
+  const std::string text = format::read_bounded_or(
+      file, format::kMaxJsonFileBytes,
+      [&](const std::string& problem) -> void { throw RecordingError(name, 0, problem); });
   try {
-    r.summary = json::parse(text.str());
-  } catch (const json::parse_error& e) {
+    r.summary = json::parse(text);
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." names the place
     const std::string what = e.what();
     const auto at = what.find("parse error");
-    throw RecordingError(name, 0, "invalid JSON: " + (at == std::string::npos ? what : what.substr(at)));
+    throw RecordingError(name, 0, "invalid JSON: " + format::escaped(at == std::string::npos
+                                                                        ? what
+                                                                        : what.substr(at),
+                                                                    4 * format::kQuoteChars));
   }
   if (!r.summary.is_object()) throw RecordingError(name, 0, "not a JSON object");
   const json& schema = need(r.summary, "schema", name);
   if (!schema.is_string() || schema.get<std::string>() != kResultSchema)
-    throw RecordingError(name, 0, "schema is " + schema.dump() + ", expected \"" +
+    throw RecordingError(name, 0, "schema is " + format::escaped(schema.dump()) + ", expected \"" +
                                       std::string(kResultSchema) + "\"");
   const json& experiment = need(r.summary, "experiment", name);
   if (!experiment.is_string()) throw RecordingError(name, 0, "\"experiment\" is not a string");
@@ -90,7 +95,7 @@ LoadedResult load_result(const fs::path& dir) {
   for (const json& f : recordings) {
     if (!f.is_string() || f.get<std::string>().empty() ||
         fs::path(f.get<std::string>()).has_parent_path())
-      throw RecordingError(name, 0, "\"recordings\" holds " + f.dump() +
+      throw RecordingError(name, 0, "\"recordings\" holds " + format::escaped(f.dump()) +
                                         ", not a file name inside the result directory");
     const fs::path csv = dir / f.get<std::string>();
     if (!fs::exists(csv)) throw RecordingError(csv.string(), 0, "listed in result.json but missing");
@@ -102,7 +107,7 @@ LoadedResult load_result(const fs::path& dir) {
 IndentationRun indentation_run_of(const LoadedResult& result) {
   const std::string name = (result.dir / kResultFile).string();
   if (result.experiment != "indentation")
-    throw RecordingError(name, 0, "experiment is \"" + result.experiment + "\", not an indentation");
+    throw RecordingError(name, 0, "experiment is " + format::quoted(result.experiment) + ", not an indentation");
   if (result.recordings.empty()) throw RecordingError(name, 0, "lists no recording");
   IndentationRun run;
   try {

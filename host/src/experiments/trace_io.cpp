@@ -8,6 +8,7 @@
 #include "palp/error.hpp"
 #include "palp/trace.hpp"
 #include "format/field_table.hpp"
+#include "format/text_input.hpp"
 #include "trace_json.hpp"
 
 namespace palp {
@@ -103,19 +104,19 @@ void write_json_atomically(const std::filesystem::path& file, const json& j) {
 }
 
 json read_json_file(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file.string() + ": cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  const std::string text = format::read_bounded_or(
+      file, format::kMaxJsonFileBytes,
+      [&](const std::string& problem) -> void { throw ConfigError(file.string() + ": " + problem); });
   try {
-    return json::parse(ss.str());
-  } catch (const json::parse_error& e) {
-    throw ConfigError(file.string() + ": not JSON (" + e.what() + ")");
+    return json::parse(text);
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
+    throw ConfigError(file.string() + ": not JSON (" +
+                      format::escaped(e.what(), 4 * format::kQuoteChars) + ")");
   }
 }
 
 TracedSurface trace_from_json(const json& j, const std::string& f) {
-  if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
+  if (!has_format(j, "palp.trace/1"))
     throw ConfigError(f + ": not a trace (\"format\" is not \"palp.trace/1\")");
   TracedSurface s;
   format::read_fields(format::JsonSource(j, f), s, kSurfaceFields);
@@ -140,7 +141,7 @@ void save_trace(const std::filesystem::path& file, const TracedSurface& s) {
 
 TracedSurface load_trace(const std::filesystem::path& file) {
   const json j = detail::read_json_file(file);
-  if (!j.is_object() || j.value("format", std::string{}) != "palp.trace/1")
+  if (!detail::has_format(j, "palp.trace/1"))
     throw ConfigError(file.string() + ": not a trace file (\"format\" is not \"palp.trace/1\")");
   return detail::trace_from_json(j, file.string());
 }

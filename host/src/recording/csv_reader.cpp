@@ -1,6 +1,7 @@
-// read_recording: the CSV in 1 MiB chunks, line by line, each cell parsed where it lies
-// (std::from_chars, no copies), every refusal with the file, the line and the problem; then the
-// sidecar, checked against the CSV it claims to describe.
+// read_recording: the CSV in 1 MiB chunks, line by line (each at most format::kMaxLineBytes),
+// each cell parsed where it lies (std::from_chars, no copies), every refusal with the file, the
+// line and the problem; then the sidecar, checked against the CSV it claims to describe.
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -10,6 +11,7 @@
 #include <limits>
 
 #include "palp/error.hpp"
+#include "format/text_input.hpp"
 #include "palp/recording.hpp"
 #include "recording/internal.hpp"
 
@@ -20,14 +22,18 @@ namespace fs = std::filesystem;
 namespace {
 
 /// The file's lines, without their "\n" or "\r\n", numbered from 1; the CRC-32 of every byte.
-/// A line stays valid until the next call to next().
+/// A line stays valid until the next call to next(). A line longer than format::kMaxLineBytes
+/// is refused as soon as that many bytes have no newline: memory stays at the 1 MiB buffer.
 class LineReader {
  public:
   LineReader(const fs::path& path, const std::string& name) : name_(name) {
     file_ = std::fopen(path.c_str(), "rb");
     if (file_ == nullptr)
       throw RecordingError(name_, 0, std::string("cannot open: ") + std::strerror(errno));
-    buffer_.resize(1u << 20);
+    // the whole file when it is smaller than the buffer (a small file costs a small buffer)
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    buffer_.resize(ec ? kBuffer : std::clamp<std::size_t>(size + 1, 4096, kBuffer));
   }
   ~LineReader() { std::fclose(file_); }
   LineReader(const LineReader&) = delete;
@@ -40,6 +46,11 @@ class LineReader {
         const auto length = static_cast<std::size_t>(static_cast<const char*>(nl) - begin);
         pos_ += length + 1;
         return give(line, begin, length);
+      }
+      if (end_ - pos_ > format::kMaxLineBytes) {
+        ++line_number_;
+        throw RecordingError(name_, line_number_,
+                             format::long_line_problem(std::string_view(begin, end_ - pos_)));
       }
       if (eof_) {
         if (pos_ == end_) return false;
@@ -57,6 +68,11 @@ class LineReader {
 
  private:
   bool give(std::string_view& line, const char* begin, std::size_t length) {
+    if (length + 1 > format::kMaxLineBytes) {  // the newline counts
+      ++line_number_;
+      throw RecordingError(name_, line_number_,
+                           format::long_line_problem(std::string_view(begin, length)));
+    }
     if (length > 0 && begin[length - 1] == '\r') --length;
     line = std::string_view(begin, length);
     if (++line_number_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
@@ -66,7 +82,8 @@ class LineReader {
     std::memmove(buffer_.data(), buffer_.data() + pos_, end_ - pos_);
     end_ -= pos_;
     pos_ = 0;
-    if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);  // a very long line
+    // a file that grew, or reported no size: up to kBuffer, which holds any line allowed
+    if (end_ == buffer_.size()) buffer_.resize(std::min(2 * buffer_.size(), kBuffer));
     const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
     if (got == 0) {
       if (std::ferror(file_))
@@ -78,6 +95,8 @@ class LineReader {
     total_bytes_ += got;
   }
 
+  static constexpr std::size_t kBuffer = 1u << 20;
+  static_assert(kBuffer > format::kMaxLineBytes);
   const std::string& name_;
   std::FILE* file_ = nullptr;
   std::string buffer_;
@@ -154,15 +173,15 @@ std::string int_range() {
          std::to_string(std::numeric_limits<Int>::max()) + ")";
 }
 
-std::string cell_text(std::string_view cell) {
-  std::string t(cell.substr(0, 40));
-  if (cell.size() > 40) t += "...";
-  return "\"" + t + "\"";
-}
+std::string cell_text(std::string_view cell) { return format::quoted(cell); }
 
+/// The names, comma-separated, each escaped and the whole cut (a header may be 64 KiB).
 std::string join(const std::vector<std::string_view>& names) {
   std::string s;
-  for (const std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+  for (const std::string_view n : names) {
+    s += (s.empty() ? "" : ", ") + format::escaped(n);
+    if (s.size() > 4 * format::kQuoteChars) return s + ", \u2026";
+  }
   return s;
 }
 
@@ -263,7 +282,8 @@ class CsvReader {
         std::string fixed(cell);
         fixed[fixed.find(',')] = '.';
         fail(column + ": " + cell_text(cell) +
-             " has a decimal comma; numbers need a decimal point (" + fixed + ")");
+             " has a decimal comma; numbers need a decimal point (" + format::escaped(fixed) +
+             ")");
       }
       case CellProblem::not_whole: fail(column + ": " + cell_text(cell) + " is not a whole number");
       case CellProblem::out_of_range:
@@ -332,6 +352,20 @@ void check_sidecar_matches(const Sidecar& s, const fs::path& csv, const fs::path
 }
 
 }  // namespace
+
+std::vector<std::size_t> recording_row_lines(const fs::path& csv) {
+  const std::string name = csv.string();
+  LineReader lines(csv, name);
+  std::vector<std::size_t> rows;
+  bool header = false;
+  std::string_view line;
+  while (lines.next(line)) {
+    if (skipped(line)) continue;
+    if (header) rows.push_back(lines.line_number());
+    header = true;
+  }
+  return rows;
+}
 
 Recording read_recording(const fs::path& csv, const ReadOptions& options) {
   CsvReader reader(csv, csv.string());

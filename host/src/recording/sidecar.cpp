@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "palp/recording.hpp"
 #include "recording/internal.hpp"
@@ -32,7 +33,7 @@ bool is_known_key(std::string_view key) {
   return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
 }
 
-std::string in_quotes(std::string_view key) { return "\"" + std::string(key) + "\""; }
+std::string in_quotes(std::string_view key) { return format::quoted(key); }
 
 /// Reads the sidecar's keys, throwing RecordingError(file, 0, ...) for the first bad one.
 class SidecarParser {
@@ -151,8 +152,7 @@ class SidecarParser {
 }  // namespace
 
 std::string rd::json_kind(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  const std::string text = format::escaped(value.dump());  // DEL and UTF-8 pass dump() as they are
   switch (value.type()) {
     case json::value_t::null: return "null";
     case json::value_t::object: return "an object";
@@ -249,11 +249,9 @@ Sidecar sidecar_from_json(const json& doc, const std::string& file) {
 
 Sidecar read_sidecar(const std::filesystem::path& json_path) {
   const std::string file = json_path.string();
-  std::ifstream in(json_path, std::ios::binary);
-  if (!in) throw RecordingError(file, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream text_stream;
-  text_stream << in.rdbuf();
-  const std::string text = std::move(text_stream).str();
+  const std::string text = format::read_bounded_or(
+      json_path, format::kMaxJsonFileBytes,
+      [&](const std::string& problem) -> void { throw RecordingError(file, 0, problem); });
   json doc;
   try {
     doc = json::parse(text);
@@ -269,7 +267,11 @@ Sidecar read_sidecar(const std::filesystem::path& json_path) {
     if (const auto colon = what.find(": ", what.find("column")); colon != std::string::npos)
       what = what.substr(colon + 2);
     throw RecordingError(file, line,
-                         "not valid JSON at column " + std::to_string(column) + ": " + what);
+                         "not valid JSON at column " + std::to_string(column) + ": " +
+                             format::escaped(what, 4 * format::kQuoteChars));
+  } catch (const json::exception& e) {  // out_of_range: a number beyond a double (1e999)
+    throw RecordingError(file, 0,
+                         "not valid JSON: " + format::escaped(e.what(), 4 * format::kQuoteChars));
   }
   return sidecar_from_json(doc, file);
 }

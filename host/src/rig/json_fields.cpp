@@ -2,9 +2,9 @@
 #include "json_fields.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
+#include "format/text_input.hpp"
 #include "palp/error.hpp"
 
 namespace palp::rig_detail {
@@ -42,7 +42,11 @@ Fields::Fields(std::string_view text, std::string source, const std::vector<std:
       }
     }
     throw ConfigError(source_ + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                      ": JSON syntax error: " + short_reason(e.what()));
+                      ": JSON syntax error: " +
+                      format::escaped(short_reason(e.what()), 4 * format::kQuoteChars));
+  } catch (const nlohmann::json::exception& e) {  // out_of_range: a number beyond a double
+    throw ConfigError(source_ + ": JSON error: " +
+                      format::escaped(e.what(), 4 * format::kQuoteChars));
   }
   if (!json_.is_object()) throw ConfigError(source_ + ": the top level must be a JSON object");
   for (const auto& item : json_.items()) {
@@ -65,7 +69,7 @@ Fields::Fields(const Fields& parent, const std::string& key, const std::vector<s
 }
 
 void Fields::fail(const std::string& key, const std::string& problem) const {
-  throw ConfigError(source_ + ": " + prefix_ + key + ": " + problem);
+  throw ConfigError(source_ + ": " + prefix_ + format::escaped(key) + ": " + problem);
 }
 
 bool Fields::has(const std::string& key) const { return json_.contains(key); }
@@ -156,11 +160,9 @@ long long Fields::integer(const std::string& key, const format::Range& r) const 
 }
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return format::read_bounded_or(path, format::kMaxJsonFileBytes, [&](const std::string& problem) {
+    throw ConfigError(path + ": " + problem);
+  });
 }
 
 }  // namespace palp::rig_detail

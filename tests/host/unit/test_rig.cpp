@@ -158,7 +158,7 @@ TEST(Rig, BadFilesGiveOneLineWithFileKeyAndProblem) {
   EXPECT_EQ(rig_error(bad), "rig.json: watch_current_A: must be a number");
   EXPECT_EQ(rig_error("[1, 2]"), "rig.json: the top level must be a JSON object");
   EXPECT_EQ(error_of([] { load_rig("/nonexistent/rig.json"); }),
-            "/nonexistent/rig.json: cannot read the file");
+            "/nonexistent/rig.json: cannot open: No such file or directory");
 }
 
 // One range for tool_id: the rig reader takes exactly the ids the bridge's set_tool takes (the

@@ -108,6 +108,13 @@ std::string load_error(const std::string& text) {
   return "no error";
 }
 
+// Found by fuzz_result_json: json::value threw a type_error (not a ConfigError) for a number.
+TEST(TraceFile, AFormatThatIsNotAStringIsNotATraceFile) {
+  EXPECT_EQ(load_error("{\"format\": 1}"), ": not a trace file (\"format\" is not \"palp.trace/1\")");
+  EXPECT_EQ(load_error("{\"format\": [\"palp.trace/1\"]}"),
+            ": not a trace file (\"format\" is not \"palp.trace/1\")");
+}
+
 TEST(TraceFile, MalformedFilesNameTheProblem) {
   EXPECT_EQ(load_error("{\"format\": \"palp.recording/1\"}"),
             ": not a trace file (\"format\" is not \"palp.trace/1\")");

@@ -61,7 +61,7 @@ TEST(Uri, SimInprocWhereTheSimulatorIsNotLinkedIsAConfigErrorNamingTheLibrary) {
   }
 }
 
-std::string error_of(const std::string& uri) {
+std::string uri_error_of(const std::string& uri) {
   try {
     parse_uri(uri);
   } catch (const ConfigError& e) {
@@ -71,15 +71,15 @@ std::string error_of(const std::string& uri) {
 }
 
 TEST(Uri, MalformedUrisNameTheProblem) {
-  EXPECT_THAT(error_of("127.0.0.1:7070"), HasSubstr("'127.0.0.1:7070': no scheme"));
-  EXPECT_THAT(error_of("tcp://x:1"), HasSubstr("unknown scheme 'tcp'"));
-  EXPECT_THAT(error_of("sim://localhost"), HasSubstr("sim:// needs host:port"));
-  EXPECT_THAT(error_of("sim://localhost:70000"),
+  EXPECT_THAT(uri_error_of("127.0.0.1:7070"), HasSubstr("'127.0.0.1:7070': no scheme"));
+  EXPECT_THAT(uri_error_of("tcp://x:1"), HasSubstr("unknown scheme 'tcp'"));
+  EXPECT_THAT(uri_error_of("sim://localhost"), HasSubstr("sim:// needs host:port"));
+  EXPECT_THAT(uri_error_of("sim://localhost:70000"),
               HasSubstr("port '70000' is not a number from 0 to 65535"));
-  EXPECT_THAT(error_of("sim://localhost:0"), HasSubstr("port 0 is not a port to connect to"));
-  EXPECT_THAT(error_of("usb://A?vid=zz"), HasSubstr("vid 'zz' is not a number"));
-  EXPECT_THAT(error_of("usb://A?speed=1"), HasSubstr("unknown parameter 'speed'"));
-  EXPECT_THAT(error_of("usb://A?vid"), HasSubstr("parameter 'vid' has no value"));
-  EXPECT_THAT(error_of("sim+inproc://"), HasSubstr("sim+inproc:// needs a phantom name (or none)"));
-  EXPECT_THAT(error_of("sim+inproc://none?seed"), HasSubstr("parameter 'seed' has no value"));
+  EXPECT_THAT(uri_error_of("sim://localhost:0"), HasSubstr("port 0 is not a port to connect to"));
+  EXPECT_THAT(uri_error_of("usb://A?vid=zz"), HasSubstr("vid 'zz' is not a number"));
+  EXPECT_THAT(uri_error_of("usb://A?speed=1"), HasSubstr("unknown parameter 'speed'"));
+  EXPECT_THAT(uri_error_of("usb://A?vid"), HasSubstr("parameter 'vid' has no value"));
+  EXPECT_THAT(uri_error_of("sim+inproc://"), HasSubstr("sim+inproc:// needs a phantom name (or none)"));
+  EXPECT_THAT(uri_error_of("sim+inproc://none?seed"), HasSubstr("parameter 'seed' has no value"));
 }

@@ -11,7 +11,8 @@
 //
 // Errors: RecordingError(file, line, problem) for an unknown header, a row with the wrong
 // number of cells, a cell that is not a finite number, f_Hz <= 0 or not increasing, mag < 0,
-// fewer than 3 rows. Nothing is dropped silently.
+// fewer than 3 rows, a line longer than 64 KiB, a file larger than 16 MiB (docs/reliability.md
+// §4). Nothing is dropped silently; a message quotes at most 60 bytes of the file, escaped.
 #pragma once
 
 #include <filesystem>
@@ -25,5 +26,9 @@ namespace palp::analysis {
 Frf read_frf_table(const std::filesystem::path& csv);
 /// The same from text; `name` is only for messages.
 Frf parse_frf_table(std::string_view text, const std::string& name);
+/// Whether the file's first line that is neither blank nor a '#' comment starts with "f_Hz"
+/// (a table, not a recording). Reads at most that line (64 KiB); RecordingError when the file
+/// cannot be opened.
+bool is_frf_table(const std::filesystem::path& file);
 
 }  // namespace palp::analysis
