@@ -4,7 +4,7 @@
 // coil's true current is 0 and heartbeat_timeout is latched: that must come within the
 // heartbeat timeout (500 ms) plus a margin of wall time (the polls' 20 ms, a step, scheduling
 // on a loaded machine). It froze before: no client, no virtual time, no watchdog. The next host
-// is then refused `faulted` (heartbeat_timeout), not `busy`.
+// is then refused `faulted` (heartbeat_timeout), not `busy`, and the next palpctl says so.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -118,6 +119,33 @@ TEST(HostLossProcess, AKilledPalpctlsHoldIsAtZeroAmpsWithinTheHeartbeatTimeoutWi
   ASSERT_TRUE(sim.await(2, nak));
   EXPECT_EQ(nak.error, proto::ErrorCode::faulted);
   EXPECT_EQ(nak.detail, static_cast<std::int32_t>(proto::FaultReason::heartbeat_timeout));
+}
+
+TEST(HostLossProcess, TheNextPalpctlAfterAKilledOneIsToldTheLatchedFaultNotBusy) {
+  test::SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  ASSERT_EQ(sim.control("pace realtime"), "ok");
+  pid_t pid = -1;
+  const Loss r = lose_host(sim, SIGKILL, pid);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(r.held);
+  ASSERT_GE(r.to_fault_s, 0.0);
+  // the dead host's stream is still running: the next palpctl stops it on connecting, and its
+  // hold is refused for the latched fault (exit 6), not `StreamConfigure refused: busy`
+  const std::string cmd = std::string(PALPCTL_BINARY) + " --uri " + sim.uri() +
+                          " run hold --current-A 0.5 --seconds 1 --out " + ::testing::TempDir() +
+                          "host_loss_next_" + std::to_string(::getpid()) + ".csv --overwrite 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  const int status = ::pclose(p);
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 6) << out;
+  EXPECT_NE(out.find("heartbeat_timeout"), std::string::npos) << out;
+  EXPECT_EQ(out.find("busy"), std::string::npos) << out;
+  EXPECT_LT(std::abs(std::atof(fields(sim.control("status"))["coil_A"].c_str())), 1e-3);
 }
 
 TEST(HostLossProcess, AStoppedPalpctlsHoldIsAtZeroAmpsWithinTheHeartbeatTimeout) {

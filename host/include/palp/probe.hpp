@@ -29,6 +29,10 @@
 // clear_fault(), commit_calibration()) is a TimeoutError: the protocol has no rule that a device
 // recognises a repeated seq, and a second execution of these differs from the first.
 //
+// Connecting: a stream a previous host left running is stopped (it would refuse this host's
+// StreamConfigure busy); a program it left is not touched (the device's heartbeat watchdog ends
+// it, and the latched fault refuses this host's next program start, naming the fault).
+//
 // Shutdown: the destructor and close() stop any program, a contact hold and the stream
 // (make_safe()), so the device is left with zero coil current, then close the transport; every
 // error path of the SDK's experiments does the same before it propagates.
@@ -243,6 +247,7 @@ class Probe {
   void close();
 
  private:
+  void stop_stale_stream();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

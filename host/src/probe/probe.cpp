@@ -64,6 +64,7 @@ Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_u
   impl_->info = to_info(impl_->session->device_info());
   impl_->handshake = impl_->session->handshake();
   impl_->uri = uri;
+  stop_stale_stream();
 }
 
 Probe::Probe(std::unique_ptr<Transport> transport, ConnectOptions options)
@@ -72,6 +73,18 @@ Probe::Probe(std::unique_ptr<Transport> transport, ConnectOptions options)
   impl_->info = to_info(impl_->session->device_info());
   impl_->handshake = impl_->session->handshake();
   impl_->uri = impl_->session->uri();
+  stop_stale_stream();
+}
+
+// A stream running when a Probe connects was started by a previous host (one host at a time:
+// a new connection is a new host); left running it would refuse this host's StreamConfigure and
+// SetParams busy. A program it left is not touched: the heartbeat watchdog ends it with a
+// latched fault this host is told about when it starts one.
+void Probe::stop_stale_stream() {
+  Session& s = impl_->s();
+  if (!status().streaming) return;
+  expect<proto::Ack>(s.request(proto::StreamStop{}, s.default_timeout()), "StreamStop");
+  s.stream_stopped();
 }
 
 Probe::~Probe() {

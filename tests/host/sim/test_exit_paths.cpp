@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 
 #include "lossy_link.hpp"
@@ -66,8 +67,16 @@ TEST(ExitPaths, ALostStatusReplyIsResentWithTheSameSeqAndAnswered) {
   InprocSimulator sim;
   auto log = std::make_shared<LossyLink::Log>();
   int status_replies = 0;
-  log->lose = [&](MessageId id, std::uint16_t) { return id == MessageId::GetStatus && status_replies++ == 0; };
+  std::atomic<bool> connected{false};  // the Probe's own status at connecting is not the one lost
+  log->lose = [&](MessageId id, std::uint16_t) {
+    return connected && id == MessageId::GetStatus && status_replies++ == 0;
+  };
   palp::Probe probe(std::make_unique<LossyLink>(sim.transport(), log), quick());
+  {
+    std::lock_guard lock(log->mu);
+    log->sent.clear();
+  }
+  connected = true;
   const palp::Status st = probe.status();  // the first reply is lost: TimeoutError without resend
   EXPECT_EQ(st.state, palp::proto::DeviceState::idle);
   EXPECT_EQ(probe.health().requests_resent, 1u);
