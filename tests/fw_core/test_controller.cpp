@@ -274,6 +274,33 @@ TEST(Controller, ACorruptedFrameIsCountedAndNotAnswered) {
   EXPECT_TRUE(b.got_.empty());
   EXPECT_EQ(b.c_.health().rx_bad_crc, 1u);
 }
+TEST(Controller, DeviceTimeRunsOnContinuouslyAcrossControlRateChangesInBothDirections) {
+  Bench b;
+  b.run_ticks(2000);  // 100 ms at 20 kHz
+  SetParams p = fields_as<SetParams>(b.c_.params());
+  p.control_rate_Hz = 40000;
+  b.send(p, 1);
+  b.run_ticks(2000);  // 50 ms at 40 kHz
+  b.send(GetStatus{}, 2);
+  b.pump();
+  EXPECT_EQ(b.last<Status>().device_time_us, 150'000u);  // was 100'000: 4000 ticks / 40 kHz
+  p.control_rate_Hz = 20000;
+  b.send(p, 3);
+  b.run_ticks(1000);  // 50 ms at 20 kHz
+  b.send(GetStatus{}, 4);
+  b.pump();
+  EXPECT_EQ(b.last<Status>().device_time_us, 200'000u);  // was 250'000: 5000 ticks / 20 kHz
+  // a stream started after the changes stamps its samples on the same clock
+  b.send(StreamConfigure{}, 5);
+  b.send(StreamStart{}, 6);
+  b.run_ticks(400);
+  b.send(StreamStop{}, 7);
+  b.pump();
+  const auto batches = b.all<SampleBatch>();
+  ASSERT_FALSE(batches.empty());
+  EXPECT_GE(batches.front().first_time_us, 200'000u);
+  EXPECT_LT(batches.front().first_time_us, 201'000u);
+}
 
 }  // namespace
 }  // namespace palp::fw

@@ -38,7 +38,10 @@ Controller::Controller(const DeviceIdentity& identity) : identity_(identity) {
 }
 
 std::uint64_t Controller::us_of_tick(std::uint64_t tick) const {
-  return tick * 1'000'000ull / params_.control_rate_Hz;
+  // an event a tick before the latest rate change (emitted after it) is at most a few ticks
+  // older than the anchor: it takes the anchor's time rather than wrapping around
+  if (tick < time_base_.tick) return time_base_.us;
+  return time_base_.us_of(tick, params_.control_rate_Hz);
 }
 
 std::uint64_t Controller::device_time_us() const { return us_of_tick(tick_); }

@@ -168,6 +168,8 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       if (programs_.running() || streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       const Params p = fields_as<Params>(m);
       const std::uint32_t old_rate = params_.control_rate_Hz;
+      // device time runs on across a rate change: anchor it at this tick
+      if (p.control_rate_Hz != old_rate) time_base_ = {tick_, device_time_us()};
       apply_params(p);
       if (p.control_rate_Hz != old_rate) {
         // keep the stream's sample rate: scale its decimation with the tick rate
@@ -235,7 +237,7 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       reply(h, c);
     } else if constexpr (std::is_same_v<M, StreamStart>) {
       pressure_.restart();
-      streamer_.start(tick_);
+      streamer_.start(tick_, time_base_);
       ack(h);
     } else if constexpr (std::is_same_v<M, StreamStop>) {
       streamer_.stop();

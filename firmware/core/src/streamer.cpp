@@ -31,9 +31,10 @@ proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
   return proto::ErrorCode::ok;
 }
 
-void Streamer::start(std::uint64_t tick) {
+void Streamer::start(std::uint64_t tick, TimeBase base) {
   running_ = true;
   start_tick_ = tick;
+  base_ = base;
   decimation_count_ = 0;
   next_index_ = 0;
   expected_ = 0;
@@ -57,7 +58,7 @@ bool Streamer::sample_due(std::uint32_t& index) {
 
 std::uint64_t Streamer::time_us_of(std::uint32_t index) const {
   const std::uint64_t tick = start_tick_ + static_cast<std::uint64_t>(index) * config_.decimation;
-  return tick * 1'000'000ull / control_rate_Hz_;
+  return base_.us_of(tick, control_rate_Hz_);
 }
 
 void Streamer::note_gap(std::uint32_t first, std::uint32_t count, proto::GapStage stage) {

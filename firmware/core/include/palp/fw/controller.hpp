@@ -9,8 +9,10 @@
 // and the QEMU images call both from one thread; the STM32 board masks the control interrupt
 // around receive() (a queued command hand-off is left for the board issue).
 //
-// Time: device time is the tick count over the control rate (exact); the host heartbeat watchdog
-// runs on the separate watchdog clock the board passes in (MCU timer, or wall time in palp-sim).
+// Time: device time is the tick count over the control rate (exact), anchored at the last rate
+// change (SetParams.control_rate_Hz) so it runs on continuously across it; the host heartbeat
+// watchdog runs on the separate watchdog clock the board passes in (MCU timer, or wall time in
+// palp-sim).
 #pragma once
 
 #include <array>
@@ -167,6 +169,7 @@ class Controller {
   Streamer streamer_;
 
   std::uint64_t tick_ = 0;   // ticks done
+  TimeBase time_base_{};     // the tick and device time of the last control-rate change
   bool encoder_started_ = false;
   float i_set_A_ = 0.0f;     // last tick's clamped set-point
   float i_meas_A_ = 0.0f;    // last tick's calibrated measurement

@@ -7,7 +7,10 @@
 // each loss becomes one EventStreamGap{first_missing_index, missing_count, stage} and sets
 // StatusBit::after_gap on the next sample sent. Nothing is ever repeated or interpolated.
 //
-// Device time of sample k is exact: (start_tick + k * decimation) / control_rate_Hz.
+// Device time of sample k is exact: base_us + (start_tick - base_tick + k * decimation) /
+// control_rate_Hz, where (base_tick, base_us) is the controller's time base: the tick and the
+// device time of the last control-rate change (0, 0 before any), so device time runs on
+// continuously across a rate change.
 #pragma once
 
 #include <cstddef>
@@ -18,6 +21,16 @@
 #include "palp/protocol/stream.hpp"
 
 namespace palp::fw {
+
+/// Device time at a tick: the anchor of the current control rate (Controller::time_base()).
+struct TimeBase {
+  std::uint64_t tick = 0;  ///< the tick the current rate took effect at
+  std::uint64_t us = 0;    ///< the device time then, µs
+  /// Device time of `tick` at `rate_Hz` (tick >= this->tick).
+  std::uint64_t us_of(std::uint64_t t, std::uint32_t rate_Hz) const {
+    return us + (t - tick) * 1'000'000ull / rate_Hz;
+  }
+};
 
 /// A sample as the control tick hands it over.
 struct IndexedSample {
@@ -44,8 +57,8 @@ class Streamer {
                              proto::StreamConfig& reply, std::uint8_t& field_index);
   const proto::StreamConfig& config() const { return config_; }
 
-  /// Starts at control tick `tick`: the next sample is index 0.
-  void start(std::uint64_t tick);
+  /// Starts at control tick `tick` (device time from `base`): the next sample is index 0.
+  void start(std::uint64_t tick, TimeBase base = {});
   void stop();
   bool running() const { return running_; }
 
@@ -76,6 +89,7 @@ class Streamer {
   std::uint32_t control_rate_Hz_ = 20000;
   bool running_ = false;
   std::uint64_t start_tick_ = 0;
+  TimeBase base_{};
   std::uint32_t decimation_count_ = 0;
   std::uint32_t next_index_ = 0;   // tick side
   std::uint32_t expected_ = 0;     // thread side: the index that should arrive next
