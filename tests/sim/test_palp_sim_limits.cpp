@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sanitized.hpp"
 #include "sim_process.hpp"
 
 namespace palp::sim::test {
@@ -26,6 +27,8 @@ long proc_status_kB(pid_t pid, const std::string& field) {
 }
 
 TEST(PalpSimLimits, TwoHundredMegabytesWithoutANewlineLeaveItsMemoryBoundedAndItAnswersAfter) {
+  if (kSanitized)  // ASan's quarantine keeps up to 256 MB of freed receive buffers resident
+    GTEST_SKIP() << "peak memory is measured in the release build";
   SimProcess sim;
   ASSERT_TRUE(sim.ok()) << sim.banner();
   ASSERT_EQ(sim.control("status").rfind("ok ", 0), 0u);

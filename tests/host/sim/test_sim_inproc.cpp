@@ -93,9 +93,11 @@ TEST(SimInproc, ATwentySecondHoldEndsFarWithinItsWaitAndTheHeartbeatNeverTrips) 
   const double before_s = probe.status().t_device_s;
   const palp::ProgramResult r = probe.run(h, 60s);  // 60 s of wall time at most
   EXPECT_EQ(r.end, proto::ProgramEnd::completed);
-  // virtual time runs on while load and start go out: at least 20 s, a little more
+  // virtual time runs on while load and start go out: at least 20 s, a little more. How much
+  // more depends on how long this thread waits between the reads that pace it (2.4 s seen on a
+  // loaded machine): the bound only rules out a hold that ran twice as long
   EXPECT_GE(r.t_device_s - before_s, 20.0);
-  EXPECT_LT(r.t_device_s - before_s, 22.0);
+  EXPECT_LT(r.t_device_s - before_s, 30.0);
   EXPECT_EQ(probe.fault().reason, proto::FaultReason::none);
 }
 
