@@ -106,7 +106,8 @@ struct TraceOptions {
 /// registered work object, another work object, a resume that belongs to another grid). Errors
 /// during the plan (a point the arm cannot reach, a lost link, a tip touching at the safe
 /// height) end it as described above: the result has complete = false and the error's text in
-/// stopped_because. A point without contact is kept with ok = false and its reason.
+/// stopped_because. A point without contact is kept with ok = false and its reason; its contact
+/// watch is stopped (the coil drops, the next point floats it again) and the plan goes on.
 TracedSurface trace_surface(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan,
                             const TraceOptions& options = {});
 

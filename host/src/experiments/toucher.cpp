@@ -195,6 +195,7 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
   const double search = std::max(rig_.approach_speed_m_per_s, std::min(kSearchSpeed, rig_.travel_speed_m_per_s));
   Approach coarse = approach(search, search_travel);
   if (!coarse.event) {
+    release_coil();  // the search's watch still runs: the next touch's watch would be refused busy
     t.reason = "no contact within " + mm(search_travel) + " of travel";
     return t;
   }
@@ -207,6 +208,7 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
   const double stroke_free = stroke_now_m();
   Approach fine = approach(approach_speed.value_or(rig_.approach_speed_m_per_s), back_off + kBackOff);
   if (!fine.event) {
+    release_coil();
     t.reason = "no contact within " + mm(back_off + kBackOff) + " of the first touch";
     return t;
   }

@@ -120,6 +120,24 @@ TEST(Trace, CancelledMidPlanLeavesTheArmAtTheSafeHeightWithZeroCurrentAndResumes
   }
 }
 
+TEST(Trace, APointWithNoSurfaceBelowItLeavesNoWatchRunningAndTheNextPointIsTraced) {
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  palp::Plan plan = pad_plan(2);
+  plan.grid.rows = 1;
+  plan.grid.x0_m = -0.040;  // off the 100 x 90 mm pad: nothing to touch within the search
+  plan.grid.pitch_x_m = 0.090;
+  const palp::TracedSurface s = palp::trace_surface(probe, *robot, sim_rig(sim), plan);
+  ASSERT_EQ(s.points.size(), 2u) << s.stopped_because;
+  EXPECT_FALSE(s.points[0].ok);
+  EXPECT_EQ(s.points[0].reason.rfind("no contact within ", 0), 0u) << s.points[0].reason;
+  // the search's contact watch was stopped with it: the next point's LoadContactWatch was refused
+  // busy before
+  EXPECT_TRUE(s.points[1].ok) << s.points[1].reason;
+  EXPECT_EQ(probe.status().i_cmd_A, 0.0);
+}
+
 }  // namespace
 
 namespace {
