@@ -106,7 +106,15 @@ TEST(SimServerHostLoss, AHostThatSendsButDoesNotDrainStallsVirtualTimeForLongerT
       s->step();
     }
   };
-  beat_for(400ms);
+  // until the buffers are full and time stands (a slow build, ASan under load, takes longer than
+  // the 400 ms this waited before; then "stalled" was taken while it still ran)
+  std::uint64_t before = sim.ticks();
+  for (int k = 0; k < 100; ++k) {
+    beat_for(100ms);
+    const std::uint64_t now = sim.ticks();
+    if (now - before < 200) break;  // 10 ms of virtual time in 100 ms of wall: stalled
+    before = now;
+  }
   const std::uint64_t stalled = sim.ticks();
   beat_for(1200ms);  // more than twice the heartbeat timeout
   // stalled: a heartbeat runs one tick (the watchdog's check before the feed) and the socket
