@@ -97,14 +97,19 @@ constexpr double kHeartbeatTimeout_s = 0.5;  // SPEC default, what palpctl leave
 constexpr double kMargin_s = 0.2;
 constexpr double kDecay_s = 0.2;  // the plant's coil current after 0 V: < 1 mA in about 0.13 s
 
-TEST(HostLossProcess, AKilledPalpctlsHoldIsAtZeroAmpsWithinTheHeartbeatTimeoutWithNoReconnect) {
-  test::SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  ASSERT_EQ(sim.control("pace realtime"), "ok");
+/// palp-sim at real time, a palpctl hold killed with SIGKILL (reaped) after about a second.
+Loss killed_hold(test::SimProcess& sim) {
+  if (!sim.ok() || sim.control("pace realtime") != "ok") return {};
   pid_t pid = -1;
   const Loss r = lose_host(sim, SIGKILL, pid);
   ::waitpid(pid, nullptr, 0);
-  ASSERT_TRUE(r.held);
+  return r;
+}
+
+TEST(HostLossProcess, AKilledPalpctlsHoldIsAtZeroAmpsWithinTheHeartbeatTimeoutWithNoReconnect) {
+  test::SimProcess sim({}, false);
+  const Loss r = killed_hold(sim);
+  ASSERT_TRUE(r.held) << sim.banner();
   EXPECT_GE(r.to_zero_s, 0.0) << "still not at 0 A 5 s after the host died";
   EXPECT_LT(r.to_zero_s, kHeartbeatTimeout_s + kMargin_s + kDecay_s);
   EXPECT_LT(r.to_fault_s, kHeartbeatTimeout_s + kMargin_s);
@@ -123,12 +128,8 @@ TEST(HostLossProcess, AKilledPalpctlsHoldIsAtZeroAmpsWithinTheHeartbeatTimeoutWi
 
 TEST(HostLossProcess, TheNextPalpctlAfterAKilledOneIsToldTheLatchedFaultNotBusy) {
   test::SimProcess sim({}, false);
-  ASSERT_TRUE(sim.ok()) << sim.banner();
-  ASSERT_EQ(sim.control("pace realtime"), "ok");
-  pid_t pid = -1;
-  const Loss r = lose_host(sim, SIGKILL, pid);
-  ::waitpid(pid, nullptr, 0);
-  ASSERT_TRUE(r.held);
+  const Loss r = killed_hold(sim);
+  ASSERT_TRUE(r.held) << sim.banner();
   ASSERT_GE(r.to_fault_s, 0.0);
   // the dead host's stream is still running: the next palpctl stops it on connecting, and its
   // hold is refused for the latched fault (exit 6), not `StreamConfigure refused: busy`
