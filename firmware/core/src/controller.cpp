@@ -49,6 +49,7 @@ std::uint64_t Controller::device_time_us() const { return us_of_tick(tick_); }
 void Controller::tick(const TickInputs& in, TickOutputs& out) {
   const float dt = dt_s();
   const std::uint64_t now = tick_;
+  counters_.control_overruns += in.missed_ticks;
 
   // sensors
   if (!encoder_started_) {

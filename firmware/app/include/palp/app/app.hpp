@@ -28,7 +28,7 @@ class App {
   /// run (or at once after received bytes): 8 ticks = 0.4 ms at 20 kHz, 40 samples at most
   /// per batch at the highest sample rate.
   static constexpr std::uint32_t kServiceTicks = 8;
-  /// Bytes moved per step on the link (each way).
+  /// Bytes moved per pass on the link (each way).
   static constexpr std::size_t kChunk = 256;
 
   explicit App(B& board) : board_(board), controller_(board.identity()) {}
@@ -56,7 +56,6 @@ class App {
     const std::uint32_t ticks = ticks_.load(std::memory_order_relaxed);
     if (received > 0 || ticks - serviced_at_ >= kServiceTicks) {
       serviced_at_ = ticks;
-      report_overruns();
       controller_.service();
     }
     flush();
@@ -65,7 +64,7 @@ class App {
       const fw::CalibrationBlock& b = controller_.committed_block();
       board_.write_calibration(b.data(), b.size());
     }
-    if (controller_.bootloader_requested() && tx_size_ == 0 && controller_.tx_pending() == 0)
+    if (controller_.bootloader_requested() && !tx_waiting())
       board_.enter_bootloader();
     board_.idle(&App::has_work, this);
   }
@@ -99,30 +98,26 @@ class App {
     board_.release_tick();
   }
 
-  // Transmit: what the link does not take now stays staged for the next pass.
+  // Transmit at most one chunk per pass, so the main loop comes back to service() between
+  // chunks (writing a chunk can take longer than a tick). What the link does not take stays
+  // staged; link_busy_ says the board's transmit interrupt will wake the loop.
   void flush() {
-    for (;;) {
-      if (tx_sent_ == tx_size_) {
-        tx_sent_ = 0;
-        tx_size_ = controller_.transmit(tx_, sizeof tx_);
-        if (tx_size_ == 0) return;
-      }
-      const std::size_t w = board_.link_write(tx_ + tx_sent_, tx_size_ - tx_sent_);
-      if (w == 0) return;
-      tx_sent_ += w;
-      if (tx_sent_ == tx_size_) tx_size_ = tx_sent_ = 0;
+    if (tx_sent_ == tx_size_) {
+      tx_sent_ = tx_size_ = 0;
+      tx_size_ = controller_.transmit(tx_, sizeof tx_);
+      if (tx_size_ == 0) return;
     }
+    const std::size_t w = board_.link_write(tx_ + tx_sent_, tx_size_ - tx_sent_);
+    tx_sent_ += w;
+    link_busy_ = tx_sent_ < tx_size_;
   }
 
-  void report_overruns() {
-    const std::uint32_t missed = board_.missed_ticks();
-    overruns_reported_ = missed;
-  }
+  bool tx_waiting() const { return tx_sent_ < tx_size_ || controller_.tx_pending() > 0; }
 
   static bool has_work(void* self) {
     const App& a = *static_cast<const App*>(self);
     const std::uint32_t ticks = a.ticks_.load(std::memory_order_relaxed);
-    return ticks - a.serviced_at_ >= kServiceTicks;
+    return ticks - a.serviced_at_ >= kServiceTicks || (!a.link_busy_ && a.tx_waiting());
   }
 
   B& board_;
@@ -132,10 +127,10 @@ class App {
   std::uint32_t rate_Hz_ = 0;
   std::atomic<std::uint32_t> ticks_{0};  // written by the tick, read by the main loop
   std::uint32_t serviced_at_ = 0;
-  std::uint32_t overruns_reported_ = 0;
   std::uint8_t rx_[kChunk] = {};
   std::uint8_t tx_[kChunk] = {};
   std::size_t tx_size_ = 0, tx_sent_ = 0;
+  bool link_busy_ = false;
 };
 
 }  // namespace palp::app

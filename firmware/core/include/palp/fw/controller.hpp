@@ -53,6 +53,10 @@ struct TickInputs {
   std::uint64_t watchdog_now_us = 0;      ///< the watchdog's own clock
   float supply_V = kDefaultSupply_V;      ///< measured H-bridge supply (sensor_monitor.hpp)
   bool driver_fault = false;              ///< the H-bridge driver's fault line, asserted
+  /// Control ticks that fell due since the previous tick() but never ran (the board's timer
+  /// interrupt was still pending when the next expiry came): counted in
+  /// Health.control_overruns. The tick index and device time count only ticks that ran.
+  std::uint32_t missed_ticks = 0;
 };
 
 /// What the board applies until the next tick.
