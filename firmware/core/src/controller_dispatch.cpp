@@ -4,6 +4,12 @@
 // first in this order wins (SPEC.md §6.3): the frame reader's unknown_message and bad_payload,
 // wrong_direction, the Hello gate (hello_required, incompatible_host), then each request's own
 // checks in the order the handler below makes them.
+//
+// The tick guard (controller.hpp): handle() holds it from the Hello gate to the reply, which
+// releases it before encoding; a handler that does main-loop-only work after its changes to the
+// tick's state (CommitCalibration's CRC) releases it first. Load* synthesises its program with the
+// guard released (load_program()).
+#include <algorithm>
 #include <type_traits>
 
 #include "palp/fw/controller.hpp"
@@ -21,12 +27,76 @@ void Controller::receive(const std::uint8_t* data, std::size_t size,
                          std::uint64_t watchdog_now_us) {
   reader_.feed_messages(
       data, size,
-      [&](const proto::FrameHeader& h, const auto& m) { dispatch(h, m, watchdog_now_us); },
+      [&](const proto::FrameHeader& h, const auto& m) { handle(h, m, watchdog_now_us); },
       [&](proto::Reject r, const proto::FrameHeader* h) {
         if (h == nullptr) return;  // frame-level: no header to answer (SPEC.md §4.5)
         nak(*h, r == proto::Reject::unknown_message ? proto::ErrorCode::unknown_message
                                                     : proto::ErrorCode::bad_payload);
       });
+}
+
+void Controller::hold() {
+  if (held_) return;
+  if (guard_.hold != nullptr) guard_.hold(guard_.ctx);
+  held_ = true;
+}
+
+void Controller::release() {
+  if (!held_) return;
+  held_ = false;
+  if (guard_.release != nullptr) guard_.release(guard_.ctx);
+}
+
+template <class M>
+void Controller::handle(const proto::FrameHeader& h, const M& m, std::uint64_t wd_now_us) {
+  hold();
+  dispatch(h, m, wd_now_us);
+  release();
+}
+
+template <class M>
+void Controller::load_program(const proto::FrameHeader& h, const M& m) {
+  using namespace proto;
+  // busy is the first refusal (SPEC.md §6.3); the tick may end the program, never start one
+  if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+  release();  // the synthesis (up to ~25 000 instructions) runs with the tick free
+  std::uint8_t field = 255;
+  const ErrorCode e = staged_.load(m, params_.control_rate_Hz, field);
+  if (e != ErrorCode::ok) return nak(h, e, field);  // the live program stays as it was
+  hold();
+  const ErrorCode a = programs_.adopt(staged_);
+  if (a != ErrorCode::ok) return nak(h, a, 255, busy_detail());
+  program_rate_Hz_ = params_.control_rate_Hz;
+  ack(h);
+}
+
+std::uint32_t Controller::max_stream_rate_Hz() const {
+  return std::clamp<std::uint32_t>(identity_.max_stream_rate_Hz, 1, Streamer::kMaxRate_Hz);
+}
+
+std::uint16_t Controller::min_stream_decimation(std::uint32_t control_rate_Hz) const {
+  const std::uint32_t max = max_stream_rate_Hz();
+  return static_cast<std::uint16_t>((control_rate_Hz + max - 1) / max);
+}
+
+void Controller::fit_stream_to_max_rate() {
+  const std::uint16_t min = min_stream_decimation(params_.control_rate_Hz);
+  if (streamer_.running() || streamer_.config().decimation >= min) return;
+  proto::StreamConfigure sc;
+  sc.channels = streamer_.config().channels;
+  sc.decimation = min;
+  sc.batch_samples = streamer_.config().batch_samples;
+  proto::StreamConfig ignored;
+  std::uint8_t field = 255;
+  hold();
+  streamer_.configure(sc, params_.control_rate_Hz, ignored, field, max_stream_rate_Hz());
+  pressure_.set_decimation(streamer_.config().decimation);
+  release();
+}
+
+void Controller::set_identity(const DeviceIdentity& identity) {
+  identity_ = identity;
+  fit_stream_to_max_rate();
 }
 
 void Controller::ack(const proto::FrameHeader& request) {
@@ -63,7 +133,7 @@ proto::DeviceInfo Controller::device_info() const {
   d.capabilities = identity_.capabilities;
   d.max_current_A = 4.0f;
   d.control_rate_Hz = params_.control_rate_Hz;
-  d.max_stream_rate_Hz = Streamer::kMaxRate_Hz;
+  d.max_stream_rate_Hz = max_stream_rate_Hz();
   d.heartbeat_timeout_ms = params_.heartbeat_timeout_ms;
   d.max_payload = static_cast<std::uint16_t>(proto::kMaxPayload);
   d.state = session_ == Session::incompatible ? proto::DeviceState::incompatible
@@ -107,7 +177,11 @@ void Controller::apply_calibration(const CalibrationData& c) {
 
 CalibrationStatus Controller::load_calibration_block(const std::uint8_t* data, std::size_t size) {
   const CalibrationLoad l = load_calibration({data, size});
-  if (l.status == CalibrationStatus::ok) apply_calibration(l.data);
+  if (l.status == CalibrationStatus::ok) {
+    hold();
+    apply_calibration(l.data);
+    release();
+  }
   return l.status;
 }
 
@@ -176,10 +250,12 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
         StreamConfigure sc;
         sc.channels = streamer_.config().channels;
         sc.batch_samples = streamer_.config().batch_samples;
-        sc.decimation = static_cast<std::uint16_t>(
-            static_cast<std::uint32_t>(streamer_.config().decimation) * p.control_rate_Hz / old_rate);
+        sc.decimation = std::max(
+            static_cast<std::uint16_t>(static_cast<std::uint32_t>(streamer_.config().decimation) *
+                                       p.control_rate_Hz / old_rate),
+            min_stream_decimation(p.control_rate_Hz));
         StreamConfig ignored;
-        streamer_.configure(sc, p.control_rate_Hz, ignored, field);
+        streamer_.configure(sc, p.control_rate_Hz, ignored, field, max_stream_rate_Hz());
         pressure_.set_decimation(streamer_.config().decimation);
       }
       reply(h, params_);
@@ -192,15 +268,13 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       apply_calibration(c);
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, CommitCalibration>) {
+      release();  // calibration_, committed_ and commits_ are the main loop's
       committed_ = serialize_calibration(calibration_);
       ++commits_;
       ack(h);
     } else if constexpr (is_one_of<M, LoadHold, LoadRamp, LoadSine, LoadSweep, LoadMultisine,
                                    LoadContactWatch>) {
-      const ErrorCode e = programs_.load(m, params_.control_rate_Hz, field);
-      if (e != ErrorCode::ok) return nak(h, e, field, e == ErrorCode::busy ? busy_detail() : 0);
-      program_rate_Hz_ = params_.control_rate_Hz;
-      ack(h);
+      load_program(h, m);
     } else if constexpr (std::is_same_v<M, ProgramStart>) {
       if (safety_.tripped())
         return nak(h, ErrorCode::faulted, 255, static_cast<std::int32_t>(safety_.fault()));
@@ -231,8 +305,11 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (std::is_same_v<M, StreamConfigure>) {
       if (streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       StreamConfig c;
-      const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field);
-      if (e != ErrorCode::ok) return nak(h, e, field);
+      const std::uint32_t max = max_stream_rate_Hz();
+      const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field, max);
+      // stream_too_fast names the limit (SPEC.md §9.1)
+      if (e != ErrorCode::ok)
+        return nak(h, e, field, e == ErrorCode::stream_too_fast ? static_cast<std::int32_t>(max) : 0);
       pressure_.set_decimation(m.decimation);
       reply(h, c);
     } else if constexpr (std::is_same_v<M, StreamStart>) {

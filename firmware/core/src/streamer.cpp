@@ -4,7 +4,7 @@ namespace palp::fw {
 
 proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
                                      std::uint32_t control_rate_Hz, proto::StreamConfig& reply,
-                                     std::uint8_t& field_index) {
+                                     std::uint8_t& field_index, std::uint32_t max_rate_Hz) {
   const int bad = c.first_out_of_range();
   if (bad >= 0) {
     field_index = static_cast<std::uint8_t>(bad);
@@ -14,7 +14,8 @@ proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
     field_index = proto::field_index_of<&proto::StreamConfigure::batch_samples>();
     return proto::ErrorCode::out_of_range;
   }
-  if (static_cast<std::uint64_t>(control_rate_Hz) > std::uint64_t{kMaxRate_Hz} * c.decimation) {
+  if (max_rate_Hz > kMaxRate_Hz) max_rate_Hz = kMaxRate_Hz;
+  if (static_cast<std::uint64_t>(control_rate_Hz) > std::uint64_t{max_rate_Hz} * c.decimation) {
     field_index = proto::field_index_of<&proto::StreamConfigure::decimation>();
     return proto::ErrorCode::stream_too_fast;
   }
