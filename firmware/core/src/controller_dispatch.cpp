@@ -6,9 +6,9 @@
 // checks in the order the handler below makes them.
 //
 // The tick guard (controller.hpp): handle() holds it from the Hello gate to the reply, which
-// releases it before encoding; a handler that does main-loop-only work after its changes to the
-// tick's state (CommitCalibration's CRC) releases it first. Load* synthesises its program with the
-// guard released (load_program()).
+// releases it before encoding. Handlers whose costly part reads only the message or main-loop
+// state release it for that part: CommitCalibration (the CRC), SetCalibration (the checks),
+// SetParams and StreamConfigure (the stream's figures), Load* (the synthesis, load_program()).
 #include <algorithm>
 #include <type_traits>
 
@@ -136,17 +136,21 @@ proto::DeviceInfo Controller::device_info() const {
   d.max_stream_rate_Hz = max_stream_rate_Hz();
   d.heartbeat_timeout_ms = params_.heartbeat_timeout_ms;
   d.max_payload = static_cast<std::uint16_t>(proto::kMaxPayload);
-  d.state = session_ == Session::incompatible ? proto::DeviceState::incompatible
-            : safety_.tripped()      ? proto::DeviceState::faulted
-            : programs_.running()    ? proto::DeviceState::running
-                                     : proto::DeviceState::idle;
+  d.state = device_state();
   return d;
+}
+
+proto::DeviceState Controller::device_state() const {
+  return session_ == Session::incompatible ? proto::DeviceState::incompatible
+         : safety_.tripped()               ? proto::DeviceState::faulted
+         : programs_.running()             ? proto::DeviceState::running
+                                           : proto::DeviceState::idle;
 }
 
 proto::Status Controller::status() const {
   proto::Status s;
   s.device_time_us = device_time_us();
-  s.state = device_info().state;
+  s.state = device_state();
   s.fault = safety_.fault();
   s.program_kind = programs_.kind();
   s.program_state = programs_.state();
@@ -240,12 +244,13 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       if (m.travel_min_counts >= m.travel_max_counts)
         return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::travel_min_counts>());
       if (programs_.running() || streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+      release();  // only this loop starts a program or the stream: nothing can become busy now
       const Params p = fields_as<Params>(m);
       const std::uint32_t old_rate = params_.control_rate_Hz;
-      // device time runs on across a rate change: anchor it at this tick
-      if (p.control_rate_Hz != old_rate) time_base_ = {tick_, device_time_us()};
-      apply_params(p);
-      if (p.control_rate_Hz != old_rate) {
+      const bool new_rate = p.control_rate_Hz != old_rate;
+      StreamConfig stream;
+      bool restream = false;
+      if (new_rate) {
         // keep the stream's sample rate: scale its decimation with the tick rate
         StreamConfigure sc;
         sc.channels = streamer_.config().channels;
@@ -254,18 +259,28 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
             static_cast<std::uint16_t>(static_cast<std::uint32_t>(streamer_.config().decimation) *
                                        p.control_rate_Hz / old_rate),
             min_stream_decimation(p.control_rate_Hz));
-        StreamConfig ignored;
-        streamer_.configure(sc, p.control_rate_Hz, ignored, field, max_stream_rate_Hz());
-        pressure_.set_decimation(streamer_.config().decimation);
+        restream = Streamer::check(sc, p.control_rate_Hz, stream, field, max_stream_rate_Hz()) ==
+                   ErrorCode::ok;
+      }
+      hold();
+      // device time runs on across a rate change: anchor it at this tick
+      if (new_rate) time_base_ = {tick_, device_time_us()};
+      apply_params(p);
+      if (restream) {
+        streamer_.apply(stream, p.control_rate_Hz);
+        pressure_.set_decimation(stream.decimation);
       }
       reply(h, params_);
     } else if constexpr (std::is_same_v<M, GetCalibration>) {
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, SetCalibration>) {
+      release();  // the checks read only the message
       CalibrationData c;
       const int bad = from_proto(fields_as<Calibration>(m), c);
       if (bad >= 0) return nak(h, ErrorCode::calibration_invalid, static_cast<std::uint8_t>(bad));
+      hold();
       apply_calibration(c);
+      release();
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, CommitCalibration>) {
       release();  // calibration_, committed_ and commits_ are the main loop's
@@ -304,12 +319,15 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       reply(h, programs_.status(tick_));
     } else if constexpr (std::is_same_v<M, StreamConfigure>) {
       if (streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+      release();  // the checks and the figures (double arithmetic) read only the message
       StreamConfig c;
       const std::uint32_t max = max_stream_rate_Hz();
-      const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field, max);
+      const ErrorCode e = Streamer::check(m, params_.control_rate_Hz, c, field, max);
       // stream_too_fast names the limit (SPEC.md §9.1)
       if (e != ErrorCode::ok)
         return nak(h, e, field, e == ErrorCode::stream_too_fast ? static_cast<std::int32_t>(max) : 0);
+      hold();
+      streamer_.apply(c, params_.control_rate_Hz);
       pressure_.set_decimation(m.decimation);
       reply(h, c);
     } else if constexpr (std::is_same_v<M, StreamStart>) {

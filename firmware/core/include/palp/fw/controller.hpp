@@ -189,6 +189,7 @@ class Controller {
   void apply_params(const proto::Params& p);
   void apply_calibration(const CalibrationData& c);
   proto::DeviceInfo device_info() const;
+  proto::DeviceState device_state() const;
   proto::Status status() const;
   std::uint16_t status_bits() const;
   void push_event(const TickEvent& e);
