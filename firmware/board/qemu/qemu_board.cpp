@@ -72,6 +72,7 @@ fw::DeviceIdentity QemuBoard::identity() const {
   id.board = kName;
   id.serial = kSerial;
   id.git_hash = PALP_GIT_HASH;
+  id.max_stream_rate_Hz = kMaxStreamRate_Hz;
   return id;
 }
 

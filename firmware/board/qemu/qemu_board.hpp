@@ -39,6 +39,9 @@ class QemuBoard {
   static constexpr const char* kSerial = "QEMU-AN386-0001";
   /// QEMU's exit status when the host asks for the bootloader.
   static constexpr int kBootloaderExitCode = 42;
+  /// The stream rate the emulated UART carries with margin, all 11 channels (firmware/README.md:
+  /// measured about 215 KB/s; 2 kHz is 50 KB/s).
+  static constexpr std::uint32_t kMaxStreamRate_Hz = 2000;
   /// Received bytes buffered between the UART interrupt and the main loop.
   static constexpr std::size_t kRxRing = 1024;
   /// Catch-up: late ticks run per tick interrupt at most, and the longest backlog kept.

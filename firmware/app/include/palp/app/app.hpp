@@ -3,8 +3,9 @@
 //   boot       the board's identity, the stored calibration (blank or bad: the core's defaults,
 //              never a silent replacement), then the tick at the default control rate;
 //   tick ISR   board.read_inputs -> watchdog clock -> controller.tick -> board.apply_outputs;
-//   main loop  link bytes -> controller.receive (the tick held while a command changes its
-//              state), a rate change -> the tick timer, controller.service every few ticks,
+//   main loop  link bytes -> controller.receive (which holds the tick through the board's
+//              hold_tick/release_tick while a command changes its state), a rate change -> the
+//              tick timer, controller.service every few ticks,
 //              controller.transmit -> link, a calibration commit -> board storage, a bootloader
 //              request -> the board once its Ack is on the wire; nothing to do -> board.idle.
 //
@@ -45,6 +46,7 @@ class App {
     const std::size_t n = board_.read_calibration(block, sizeof block);
     if (n > 0) calibration_status_ = controller_.load_calibration_block(block, n);
     commits_seen_ = controller_.commits();
+    controller_.set_tick_guard(fw::TickGuard{&App::hold_entry, &App::release_entry, this});
     rate_Hz_ = controller_.control_rate_Hz();
     board_.start_tick(rate_Hz_, TickHandler{&App::tick_entry, this});
   }
@@ -86,17 +88,21 @@ class App {
     ticks_.store(ticks_.load(std::memory_order_relaxed) + 1u, std::memory_order_relaxed);
   }
 
-  // Commands act on the tick's state: the tick is held while receive() runs, and a rate change
-  // reprograms the timer in the same held section, so no tick runs at the new rate's dt with
-  // the old period.
+  // Commands act on the tick's state: the core holds the board's tick guard around every
+  // change (TickGuard, set at boot). A new control rate reprograms the timer after the request
+  // (the ticks between run at the new rate's dt with the old period: at most the main loop's
+  // pass, a few ticks).
   void receive(std::size_t n) {
-    board_.hold_tick();
     controller_.receive(rx_, n, board_.now_us());
     const std::uint32_t rate = controller_.control_rate_Hz();
-    if (rate != rate_Hz_ && board_.start_tick(rate, TickHandler{&App::tick_entry, this}))
-      rate_Hz_ = rate;
+    if (rate == rate_Hz_) return;
+    board_.hold_tick();
+    if (board_.start_tick(rate, TickHandler{&App::tick_entry, this})) rate_Hz_ = rate;
     board_.release_tick();
   }
+
+  static void hold_entry(void* self) { static_cast<App*>(self)->board_.hold_tick(); }
+  static void release_entry(void* self) { static_cast<App*>(self)->board_.release_tick(); }
 
   // Transmit at most one chunk per pass, so the main loop comes back to service() between
   // chunks (writing a chunk can take longer than a tick). What the link does not take stays
