@@ -32,6 +32,7 @@ constexpr double kForceTol_N = 50e-6;    // contact force, any time
 constexpr double kCurveDepthTol_m = 10e-9;  // per-step mean depth of the staircase
 constexpr double kCurveForceTol_N = 10e-6;  // per-step mean contact force
 constexpr double kFitRelTol = 1e-4;      // k_o and delta0 of the Hertz fit (encoder depths)
+constexpr double kNoisyFitRelTol = 1e-4; // the same, each plant under its own sensor noise
 
 constexpr double kVolts_per_A = 5.8;  // R: a voltage that holds a current at rest
 
@@ -247,6 +248,55 @@ TEST(FloatPlantVsHilStaircase, QuasiStaticForceIndentationCurveAndItsHertzFitAgr
   EXPECT_NEAR(fit_f.delta0_m / fit_h.delta0_m, 1.0, kFitRelTol);
   EXPECT_NEAR(fit_f.k_o_N_per_m / fit_h.k_o_N_per_m, 1.0, kFitRelTol);
   p.expect_within_tolerances();
+}
+
+/// The staircase as the firmware runs it: a current loop on the plant's own current-sense
+/// reading (hil/plant: Gaussian 2 mA noise for `seed`; FloatPlant: its dither) and the depth
+/// from its own encoder; returns the paper's Hertz fit.
+template <class Sense, class Step, class Encoder>
+plant::test::FitResult noisy_staircase_fit(Sense sense, Step step, Encoder encoder) {
+  constexpr double dt = 50e-6;
+  plant::test::CurrentLoop loop(PlantConfig{});
+  for (int k = 0; k < 40000; ++k) step(loop.update(plant::test::kIc, sense(), dt), dt);
+  std::vector<plant::test::StairPoint> stairs;
+  for (int k = 1; k < 300; ++k) {
+    const double i_ref = plant::test::kIc + 0.01 * k;
+    double depth = 0.0;
+    for (int t = 0; t < 2000; ++t) {
+      step(loop.update(i_ref, sense(), dt), dt);
+      depth += (encoder() - 25000) * 1e-6 / 2000.0;
+    }
+    if (depth > 5e-3) break;
+    stairs.push_back({i_ref, depth,
+                      plant::test::kKf * (i_ref - plant::test::kIc) - plant::test::kKv * depth});
+  }
+  return plant::test::fit_hertz(stairs);
+}
+
+// What issue 18 compares: the same indentation on palp-sim (hil/plant, its noise) and on the
+// QEMU image (FloatPlant, its dither). Seeds 1-4 of palp-sim spread by ~1e-5 in k_o and delta0.
+TEST(FloatPlantVsHilStaircase, UnderEachPlantsOwnSensorNoiseKAndDelta0AgreeWithin1e4) {
+  FloatPlant fp;
+  const auto fit_f = noisy_staircase_fit([&] { return static_cast<double>(fp.sensors().i_sense_A); },
+                                         [&](double v, double dt) {
+                                           fp.step(static_cast<float>(v), static_cast<float>(dt));
+                                         },
+                                         [&] { return static_cast<int>(fp.sensors().encoder_timer); });
+  std::printf("float (dither): delta0 %.6f mm, k_o %.6f N/mm\n", fit_f.delta0_m * 1e3,
+              fit_f.k_o_N_per_m * 1e-3);
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    PlantConfig c;
+    c.noise_seed = seed;
+    Plant hil(c, plant::load_shipped_phantom(FloatPlantScene::kPhantom));
+    hil.set_mount(FloatPlantScene::kMountX_m, FloatPlantScene::kMountY_m, FloatPlantScene::kMountZ_m);
+    const auto fit_h = noisy_staircase_fit([&] { return hil.current_sense_A(); },
+                                           [&](double v, double dt) { hil.step(dt, v); },
+                                           [&] { return hil.encoder_count(); });
+    std::printf("hil seed %d: delta0 %.6f mm, k_o %.6f N/mm\n", static_cast<int>(seed),
+                fit_h.delta0_m * 1e3, fit_h.k_o_N_per_m * 1e-3);
+    EXPECT_NEAR(fit_f.delta0_m / fit_h.delta0_m, 1.0, kNoisyFitRelTol);
+    EXPECT_NEAR(fit_f.k_o_N_per_m / fit_h.k_o_N_per_m, 1.0, kNoisyFitRelTol);
+  }
 }
 
 }  // namespace float_plant_test
