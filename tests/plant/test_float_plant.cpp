@@ -196,15 +196,13 @@ TEST_P(FloatPlantVsHil, SineAboutTheFloatMakingAndBreakingContactAgrees) {
   p.expect_within_tolerances();
 }
 
-INSTANTIATE_TEST_SUITE_P(Ticks, FloatPlantVsHil, ::testing::Values(50e-6, 25e-6),
-                         [](const auto& param_info) { return param_info.param < 40e-6 ? "40kHz" : "20kHz"; });
 
 /// The paper's staircase (§IV-A; tests/plant/test_operating_points.cpp): from I_c +0.01 A every
 /// 100 ms until the mean depth passes 5 mm, the voltages from a current loop on hil/plant's
 /// current, the same voltages into the float plant. Per step: the mean true depth and contact
 /// force of each, and the paper's stair point from each one's encoder.
-TEST(FloatPlantVsHilStaircase, QuasiStaticForceIndentationCurveAndItsHertzFitAgree) {
-  constexpr double dt = 50e-6;
+TEST_P(FloatPlantVsHil, StaircaseQuasiStaticForceIndentationCurveAndItsHertzFitAgree) {
+  const double dt = GetParam();
   Pair p;
   float_from_parked(p, dt, 2.0);
   plant::test::CurrentLoop loop(p.hil.config());
@@ -236,7 +234,7 @@ TEST(FloatPlantVsHilStaircase, QuasiStaticForceIndentationCurveAndItsHertzFitAgr
   }
   const auto fit_h = plant::test::fit_hertz(stairs_hil);
   const auto fit_f = plant::test::fit_hertz(stairs_fp);
-  p.report("staircase");
+  p.report(dt < 40e-6 ? "staircase, 40 kHz" : "staircase, 20 kHz");
   std::printf("staircase: %zu steps, per-step mean depth within %.3g m, force within %.3g N\n"
               "hil:   delta0 %.6f mm, k_o %.6f N/mm\nfloat: delta0 %.6f mm, k_o %.6f N/mm\n",
               stairs_hil.size(), worst_depth, worst_force, fit_h.delta0_m * 1e3,
@@ -249,6 +247,9 @@ TEST(FloatPlantVsHilStaircase, QuasiStaticForceIndentationCurveAndItsHertzFitAgr
   EXPECT_NEAR(fit_f.k_o_N_per_m / fit_h.k_o_N_per_m, 1.0, kFitRelTol);
   p.expect_within_tolerances();
 }
+
+INSTANTIATE_TEST_SUITE_P(Ticks, FloatPlantVsHil, ::testing::Values(50e-6, 25e-6),
+                         [](const auto& param_info) { return param_info.param < 40e-6 ? "40kHz" : "20kHz"; });
 
 /// The staircase as the firmware runs it: a current loop on the plant's own current-sense
 /// reading (hil/plant: Gaussian 2 mA noise for `seed`; FloatPlant: its dither) and the depth
