@@ -25,14 +25,14 @@ using plant::Plant;
 using plant::PlantConfig;
 
 // README "Agreement" -----------------------------------------------------------------------
-constexpr double kLawRelTol = 2e-6;      // contact law: table 1e-8 + float evaluation ~20 ulp
-constexpr double kPositionTol_m = 50e-9; // position, any time (measured worst: README)
-constexpr double kCurrentTol_A = 2e-6;   // coil current, any time
-constexpr double kForceTol_N = 50e-6;    // contact force, any time
+constexpr double kLawRelTol = 2e-6;         // contact law: table 1e-8 + float evaluation ~20 ulp
+constexpr double kPositionTol_m = 50e-9;    // position, any time (measured worst: README)
+constexpr double kCurrentTol_A = 2e-6;      // coil current, any time
+constexpr double kForceTol_N = 50e-6;       // contact force, any time
 constexpr double kCurveDepthTol_m = 10e-9;  // per-step mean depth of the staircase
 constexpr double kCurveForceTol_N = 10e-6;  // per-step mean contact force
-constexpr double kFitRelTol = 1e-4;      // k_o and delta0 of the Hertz fit (encoder depths)
-constexpr double kNoisyFitRelTol = 1e-4; // the same, each plant under its own sensor noise
+constexpr double kFitRelTol = 1e-4;         // k_o and delta0 of the Hertz fit (encoder depths)
+constexpr double kNoisyFitRelTol = 1e-4;    // the same, each plant under its own sensor noise
 
 constexpr double kVolts_per_A = 5.8;  // R: a voltage that holds a current at rest
 
@@ -139,8 +139,8 @@ TEST(FloatPlantSensors, CurrentSenseIsTheTrueCurrentWithUnbiased2mARmsDitherInsi
   std::printf("current sense: error mean %.3g A, rms %.3g A, max %.3g A\n", mean, rms, worst);
   // triangular dither of rms 2 mA plus the 12-bit code's 2.44 mA step (rms 0.70 mA): 2.12 mA
   EXPECT_NEAR(rms, 2.12e-3, 0.1e-3);
-  EXPECT_LT(std::abs(mean), 0.1e-3);      // 5 standard errors of the mean: 2.12 mA / sqrt(N) x 5
-  EXPECT_LT(worst, 4.90e-3 + 1.23e-3);    // dither half-width + half a code
+  EXPECT_LT(std::abs(mean), 0.1e-3);    // 5 standard errors of the mean: 2.12 mA / sqrt(N) x 5
+  EXPECT_LT(worst, 4.90e-3 + 1.23e-3);  // dither half-width + half a code
 }
 
 TEST(FloatPlantSensors, EncoderTimerIsTheStrokeInMicrometresRoundedToNearest) {
@@ -174,7 +174,7 @@ TEST_P(FloatPlantVsHil, FloatingFromParkedAt0p5AAgreesInPositionCurrentForceAndS
   p.report(dt < 40e-6 ? "float from parked, 40 kHz" : "float from parked, 20 kHz");
   p.expect_within_tolerances();
   EXPECT_NEAR(p.fp.position_m(), 0.025, 2e-6);  // and it did float to the touch point
-  EXPECT_GT(p.dx, 0.0);                          // (two models, not one: they do differ)
+  EXPECT_GT(p.dx, 0.0);                         // (two models, not one: they do differ)
 }
 
 TEST_P(FloatPlantVsHil, SineAboutTheFloatMakingAndBreakingContactAgrees) {
@@ -195,7 +195,6 @@ TEST_P(FloatPlantVsHil, SineAboutTheFloatMakingAndBreakingContactAgrees) {
   EXPECT_GE(contact_changes, 20);  // the tip left and met the surface every cycle
   p.expect_within_tolerances();
 }
-
 
 /// The paper's staircase (§IV-A; tests/plant/test_operating_points.cpp): from I_c +0.01 A every
 /// 100 ms until the mean depth passes 5 mm, the voltages from a current loop on hil/plant's
@@ -235,10 +234,11 @@ TEST_P(FloatPlantVsHil, StaircaseQuasiStaticForceIndentationCurveAndItsHertzFitA
   const auto fit_h = plant::test::fit_hertz(stairs_hil);
   const auto fit_f = plant::test::fit_hertz(stairs_fp);
   p.report(dt < 40e-6 ? "staircase, 40 kHz" : "staircase, 20 kHz");
-  std::printf("staircase: %zu steps, per-step mean depth within %.3g m, force within %.3g N\n"
-              "hil:   delta0 %.6f mm, k_o %.6f N/mm\nfloat: delta0 %.6f mm, k_o %.6f N/mm\n",
-              stairs_hil.size(), worst_depth, worst_force, fit_h.delta0_m * 1e3,
-              fit_h.k_o_N_per_m * 1e-3, fit_f.delta0_m * 1e3, fit_f.k_o_N_per_m * 1e-3);
+  std::printf(
+      "staircase: %zu steps, per-step mean depth within %.3g m, force within %.3g N\n"
+      "hil:   delta0 %.6f mm, k_o %.6f N/mm\nfloat: delta0 %.6f mm, k_o %.6f N/mm\n",
+      stairs_hil.size(), worst_depth, worst_force, fit_h.delta0_m * 1e3, fit_h.k_o_N_per_m * 1e-3,
+      fit_f.delta0_m * 1e3, fit_f.k_o_N_per_m * 1e-3);
   ASSERT_GT(stairs_hil.size(), 50u);
   EXPECT_NEAR(fit_h.delta0_m * 1e3, 2.935, 0.03 * 2.935);  // the paper's point, as hil's test
   EXPECT_LT(worst_depth, kCurveDepthTol_m);
@@ -249,7 +249,9 @@ TEST_P(FloatPlantVsHil, StaircaseQuasiStaticForceIndentationCurveAndItsHertzFitA
 }
 
 INSTANTIATE_TEST_SUITE_P(Ticks, FloatPlantVsHil, ::testing::Values(50e-6, 25e-6),
-                         [](const auto& param_info) { return param_info.param < 40e-6 ? "40kHz" : "20kHz"; });
+                         [](const auto& param_info) {
+                           return param_info.param < 40e-6 ? "40kHz" : "20kHz";
+                         });
 
 /// The staircase as the firmware runs it: a current loop on the plant's own current-sense
 /// reading (hil/plant: Gaussian 2 mA noise for `seed`; FloatPlant: its dither) and the depth
@@ -268,8 +270,8 @@ plant::test::FitResult noisy_staircase_fit(Sense sense, Step step, Encoder encod
       depth += (encoder() - 25000) * 1e-6 / 2000.0;
     }
     if (depth > 5e-3) break;
-    stairs.push_back({i_ref, depth,
-                      plant::test::kKf * (i_ref - plant::test::kIc) - plant::test::kKv * depth});
+    stairs.push_back(
+        {i_ref, depth, plant::test::kKf * (i_ref - plant::test::kIc) - plant::test::kKv * depth});
   }
   return plant::test::fit_hertz(stairs);
 }
@@ -278,18 +280,18 @@ plant::test::FitResult noisy_staircase_fit(Sense sense, Step step, Encoder encod
 // QEMU image (FloatPlant, its dither). Seeds 1-4 of palp-sim spread by ~1e-5 in k_o and delta0.
 TEST(FloatPlantVsHilStaircase, UnderEachPlantsOwnSensorNoiseKAndDelta0AgreeWithin1e4) {
   FloatPlant fp;
-  const auto fit_f = noisy_staircase_fit([&] { return static_cast<double>(fp.sensors().i_sense_A); },
-                                         [&](double v, double dt) {
-                                           fp.step(static_cast<float>(v), static_cast<float>(dt));
-                                         },
-                                         [&] { return static_cast<int>(fp.sensors().encoder_timer); });
+  const auto fit_f = noisy_staircase_fit(
+      [&] { return static_cast<double>(fp.sensors().i_sense_A); },
+      [&](double v, double dt) { fp.step(static_cast<float>(v), static_cast<float>(dt)); },
+      [&] { return static_cast<int>(fp.sensors().encoder_timer); });
   std::printf("float (dither): delta0 %.6f mm, k_o %.6f N/mm\n", fit_f.delta0_m * 1e3,
               fit_f.k_o_N_per_m * 1e-3);
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     PlantConfig c;
     c.noise_seed = seed;
     Plant hil(c, plant::load_shipped_phantom(FloatPlantScene::kPhantom));
-    hil.set_mount(FloatPlantScene::kMountX_m, FloatPlantScene::kMountY_m, FloatPlantScene::kMountZ_m);
+    hil.set_mount(FloatPlantScene::kMountX_m, FloatPlantScene::kMountY_m,
+                  FloatPlantScene::kMountZ_m);
     const auto fit_h = noisy_staircase_fit([&] { return hil.current_sense_A(); },
                                            [&](double v, double dt) { hil.step(dt, v); },
                                            [&] { return hil.encoder_count(); });

@@ -18,8 +18,14 @@ constexpr double kLn2 = 0.693147180559945309417;
 // its series (|z| <= 0.172, so each term is 34 times smaller than the last).
 constexpr double log_cx(double y) {
   int e = 0;
-  while (y > 1.4142135623730951) { y *= 0.5; ++e; }
-  while (y < 0.7071067811865476) { y *= 2.0; --e; }
+  while (y > 1.4142135623730951) {
+    y *= 0.5;
+    ++e;
+  }
+  while (y < 0.7071067811865476) {
+    y *= 2.0;
+    --e;
+  }
   const double z = (y - 1.0) / (y + 1.0), z2 = z * z;
   double term = z, sum = 0.0;
   for (int k = 1; k < 60; k += 2) {
@@ -80,7 +86,7 @@ constexpr std::array<Node, kNodes> kSneddon = make_table();
 constexpr float kCellsPerUnitDepth = C::kTableCells / C::kTableMaxDepth;
 constexpr float kInvRadius = 1.0f / C::kTipRadius_m;
 constexpr float kForceScale_N = C::kEStar_Pa * C::kTipRadius_m * C::kTipRadius_m;  // E* R^2
-constexpr float kStiffnessScale = 2.0f * C::kEStar_Pa * C::kTipRadius_m;        // 2 E* R
+constexpr float kStiffnessScale = 2.0f * C::kEStar_Pa * C::kTipRadius_m;           // 2 E* R
 constexpr float kChiPerRootD = C::kTipRadius_m / C::kLayerThickness_m;  // chi = R sqrt(d) / h
 // d(chi)/d(delta) = 1 / (2 h sqrt(d)): F_sphere phi' dchi/ddelta = E* R^2 H(d) d phi' / (2 h)
 constexpr float kSlopeScale = kForceScale_N / (2.0f * C::kLayerThickness_m);
@@ -109,7 +115,7 @@ ContactPoint contact_elastic(float depth_m) {
   const float h = w0 * n[0].h + w1 * n[1].h + w2 * n[2].h + w3 * n[3].h;
 
   const float root_d = __builtin_sqrtf(d);
-  const float sphere_force = kForceScale_N * h * d * root_d;  // E* R^2 S
+  const float sphere_force = kForceScale_N * h * d * root_d;    // E* R^2 S
   const float sphere_stiffness = kStiffnessScale * g * root_d;  // 2 E* a
 
   // Dimitriadis et al. (2002) bonded layer, nu = 0.5 (hil/plant contact_laws.cpp, same numbers).

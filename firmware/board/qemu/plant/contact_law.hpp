@@ -15,14 +15,14 @@ namespace palp::qemu {
 
 /// The law's numbers (hil/plant/phantoms/solid_1d.phantom, position 3; the tip: PlantConfig).
 struct ContactConstants {
-  static constexpr float kTipRadius_m = 2.5e-3f;         // paper §II-A: PLA hemisphere
-  static constexpr float kEStar_Pa = 125764.0f;          // solid_1d e_star_Pa (tuned, hil README)
-  static constexpr float kLayerThickness_m = 0.015f;     // solid_1d layer_thickness_m, pos. 3
-  static constexpr float kRetardationTime_s = 2.124e-3f; // solid_1d retardation_time_s, pos. 3
+  static constexpr float kTipRadius_m = 2.5e-3f;          // paper §II-A: PLA hemisphere
+  static constexpr float kEStar_Pa = 125764.0f;           // solid_1d e_star_Pa (tuned, hil README)
+  static constexpr float kLayerThickness_m = 0.015f;      // solid_1d layer_thickness_m, pos. 3
+  static constexpr float kRetardationTime_s = 2.124e-3f;  // solid_1d retardation_time_s, pos. 3
   static constexpr float kParticipatingMass_kg = 0.01416f;  // solid_1d participating_mass_kg
   static constexpr float kMassEngageDepth_m = 1.0e-3f;      // solid_1d mass_engage_depth_m
-  static constexpr int kTableCells = 256;                // cells over d in [0, kTableMaxDepth]
-  static constexpr float kTableMaxDepth = 4.0f;          // d = delta / R (hil: same span)
+  static constexpr int kTableCells = 256;                   // cells over d in [0, kTableMaxDepth]
+  static constexpr float kTableMaxDepth = 4.0f;             // d = delta / R (hil: same span)
 };
 
 /// Relaxed elastic force and its tangent at one depth.

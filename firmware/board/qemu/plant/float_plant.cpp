@@ -9,37 +9,37 @@ namespace palp::qemu {
 namespace {
 
 // ---- coil (hil/plant PlantConfig::coil, paper §II-A) --------------------------------------
-constexpr float kResistance_ohm = 5.8f;   // §II-A, measured on the integrated actuator
-constexpr float kInductance_H = 2.07e-3f; // §II-A
-constexpr float kSupply_V = 24.0f;        // issue: the H-bridge supply
+constexpr float kResistance_ohm = 5.8f;    // §II-A, measured on the integrated actuator
+constexpr float kInductance_H = 2.07e-3f;  // §II-A
+constexpr float kSupply_V = 24.0f;         // issue: the H-bridge supply
 constexpr float kElecTau_s = kInductance_H / kResistance_ohm;  // L / R = 0.357 ms
 
 // K_f(s): hil/plant default_kf_table(), piecewise linear, constant beyond the ends.
-constexpr float kKfRear = 3.30f;        // s = 0: assumed (rear end, only reached when parked)
-constexpr float kKfMid = 3.84f;         // s = 17 mm: §II-A, near mid-stroke
-constexpr float kKfWork = 2.918f;       // s >= 23.5 mm: §II-A "2.918 N/A at 24 mm travel", flat
+constexpr float kKfRear = 3.30f;   // s = 0: assumed (rear end, only reached when parked)
+constexpr float kKfMid = 3.84f;    // s = 17 mm: §II-A, near mid-stroke
+constexpr float kKfWork = 2.918f;  // s >= 23.5 mm: §II-A "2.918 N/A at 24 mm travel", flat
 constexpr float kKfMid_m = 0.017f;
 constexpr float kKfFlat_m = 0.0235f;
 
 // ---- mechanics (hil/plant PlantConfig::mechanics; §II-A, §IV-A, §IV-B) --------------------
-constexpr float kMovingMass_kg = 0.161f;  // §IV-B
-constexpr float kDamping_N_s_per_m = 1.38f;  // §IV-B (slide friction folded in, hil README)
-constexpr float kSpringRate_N_per_m = 43.9f; // §II-A
-constexpr float kFloatCurrent_A = 0.5f;      // §IV-A: contact threshold I_c
-constexpr float kFloatPosition_m = 0.025f;   // assumed s_f (hil README "Frames and stroke")
-constexpr float kStrokeMax_m = 0.034f;       // assumed stroke (front stop)
+constexpr float kMovingMass_kg = 0.161f;      // §IV-B
+constexpr float kDamping_N_s_per_m = 1.38f;   // §IV-B (slide friction folded in, hil README)
+constexpr float kSpringRate_N_per_m = 43.9f;  // §II-A
+constexpr float kFloatCurrent_A = 0.5f;       // §IV-A: contact threshold I_c
+constexpr float kFloatPosition_m = 0.025f;    // assumed s_f (hil README "Frames and stroke")
+constexpr float kStrokeMax_m = 0.034f;        // assumed stroke (front stop)
 // The springs' preload is set with the probe vertical so the coil floats at s_f at I_c:
 // k_v (s_f - s_0) = K_f(s_f) I_c + m_v g. Springs plus the coil's weight then push
 // -k_v x - K_f(s_f) I_c at x = s - s_f: gravity cancels exactly (the phantom carries the
 // participating mass's weight, as in hil/plant).
-constexpr float kHoldForce_N = kKfWork * kFloatCurrent_A;  // 1.459 N, the paper's F_0
-constexpr float kStopRear_x_m = -kFloatPosition_m;             // s = 0
+constexpr float kHoldForce_N = kKfWork * kFloatCurrent_A;          // 1.459 N, the paper's F_0
+constexpr float kStopRear_x_m = -kFloatPosition_m;                 // s = 0
 constexpr float kStopFront_x_m = kStrokeMax_m - kFloatPosition_m;  // s = 34 mm
 
 // ---- sensors (hil/plant SensorConfig; sensors.cpp) ----------------------------------------
-constexpr float kCountsPerMetre = 1e6f;       // §II-A: 1 um a count
-constexpr float kFloatCounts = 25000.0f;      // s_f in counts
-constexpr float kCurrentFullScale_A = 5.0f;   // assumed +-5 A, 12 bit, 0 A at code 2048
+constexpr float kCountsPerMetre = 1e6f;      // §II-A: 1 um a count
+constexpr float kFloatCounts = 25000.0f;     // s_f in counts
+constexpr float kCurrentFullScale_A = 5.0f;  // assumed +-5 A, 12 bit, 0 A at code 2048
 constexpr float kCurrentHalfCodes = 2048.0f;
 constexpr float kCurrentTopCode = 4095.0f;
 // Dither: triangular on [-a, a] with a = sqrt(6) x 2 mA, the rms of hil/plant's Gaussian
@@ -84,9 +84,8 @@ void FloatPlant::update_contact() {
   const ContactPoint el = contact_elastic(x);
   rate_free_force_N_ = el.force_N;
   damping_N_s_per_m_ = ContactConstants::kRetardationTime_s * el.stiffness_N_per_m;
-  const float engage = x < ContactConstants::kMassEngageDepth_m
-                           ? x / ContactConstants::kMassEngageDepth_m
-                           : 1.0f;
+  const float engage =
+      x < ContactConstants::kMassEngageDepth_m ? x / ContactConstants::kMassEngageDepth_m : 1.0f;
   contact_mass_kg_ = ContactConstants::kParticipatingMass_kg * engage;
 }
 
@@ -140,7 +139,8 @@ void FloatPlant::step(float v_coil_V, float dt_s) {
   force_N_ = 0.0f;
   if (touching_) {
     const float cd = damping_N_s_per_m_;
-    const float kick_contact = half * (f_other - rate_free_force_N_ - (kDamping_N_s_per_m + cd) * vel) /
+    const float kick_contact = half *
+                               (f_other - rate_free_force_N_ - (kDamping_N_s_per_m + cd) * vel) /
                                mass / (1.0f + half * (kDamping_N_s_per_m + cd) / mass);
     const float force = rate_free_force_N_ + cd * (vel + kick_contact);
     if (force > 0.0f) {
@@ -164,8 +164,9 @@ PlantSensors FloatPlant::sensors() const {
 
   // Current sense: true current + dither, 12-bit code (rounded, clamped), back to amperes.
   const std::uint32_t r = mix32(tick_ * 0x9e3779b9u + 0x2545f491u);
-  const float tri = static_cast<float>(static_cast<std::int32_t>((r & 0xffffu) + (r >> 16)) - 65535) *
-                    (1.0f / 65536.0f);  // triangular on (-1, 1)
+  const float tri =
+      static_cast<float>(static_cast<std::int32_t>((r & 0xffffu) + (r >> 16)) - 65535) *
+      (1.0f / 65536.0f);  // triangular on (-1, 1)
   const float i = current_A_ + kDitherHalfWidth_A * tri;
   float code = kCurrentHalfCodes + i * (kCurrentHalfCodes / kCurrentFullScale_A) + 0.5f;
   code = code < 0.0f ? 0.0f : code;

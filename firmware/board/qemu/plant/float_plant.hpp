@@ -21,10 +21,10 @@ namespace palp::qemu {
 
 /// What the board's peripherals read at one tick.
 struct PlantSensors {
-  float i_sense_A;                             // current sense: 12-bit, +-5 A, with dither noise
-  std::uint16_t encoder_timer;                 // quadrature timer count (1 um a count), mod 2^16
-  std::array<std::uint16_t, 6> pressure_codes; // 12-bit codes, index 0 = paper channel 1
-  float supply_V;                              // H-bridge supply
+  float i_sense_A;                              // current sense: 12-bit, +-5 A, with dither noise
+  std::uint16_t encoder_timer;                  // quadrature timer count (1 um a count), mod 2^16
+  std::array<std::uint16_t, 6> pressure_codes;  // 12-bit codes, index 0 = paper channel 1
+  float supply_V;                               // H-bridge supply
 };
 
 /// The fixed scene, for whoever must place palp-sim (or hil/plant) the same way.
@@ -81,10 +81,10 @@ class FloatPlant {
   std::uint32_t tick_ = 0;
 
   // Contact after the last step (reused as the next step's start, as hil/plant does).
-  float force_N_ = 0.0f;           // total contact force, >= 0
-  float rate_free_force_N_ = 0.0f; // elastic part
-  float damping_N_s_per_m_ = 0.0f; // Kelvin-Voigt tau k_t
-  float contact_mass_kg_ = 0.0f;   // participating mass engaged
+  float force_N_ = 0.0f;            // total contact force, >= 0
+  float rate_free_force_N_ = 0.0f;  // elastic part
+  float damping_N_s_per_m_ = 0.0f;  // Kelvin-Voigt tau k_t
+  float contact_mass_kg_ = 0.0f;    // participating mass engaged
   bool touching_ = false;
 
   // K_f at the end of the last step and the per-dt electrical constants.
