@@ -29,7 +29,7 @@
 #include "palp/app/board.hpp"
 #include "palp/fw/calibration.hpp"
 #include "palp/fw/spsc_queue.hpp"
-#include "placeholder_plant.hpp"
+#include "float_plant.hpp"
 
 namespace palp::qemu {
 
