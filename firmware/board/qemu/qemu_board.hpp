@@ -46,7 +46,7 @@ class QemuBoard {
   /// Received bytes buffered between the UART interrupt and the main loop.
   static constexpr std::size_t kRxRing = 1024;
   /// Catch-up: late ticks run per tick interrupt at most, and the longest backlog kept.
-  static constexpr std::uint32_t kCatchUpPerIrq = 32;
+  static constexpr std::uint32_t kCatchUpPerIrq = 4;
   static constexpr float kMaxBacklog_s = 0.1f;
 
   /// Sets up the UART, the clock and the NVIC; the tick starts with start_tick().
