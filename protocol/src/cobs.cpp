@@ -4,26 +4,29 @@ namespace palp::proto {
 
 std::size_t cobs_encode(const u8* in, std::size_t n, u8* out, std::size_t capacity) {
   if (capacity < cobs_max_encoded(n)) return 0;
-  std::size_t code_pos = 0;  // where the current block's code byte goes
-  std::size_t o = 1;
-  u8 code = 1;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (in[k] == 0) {
-      out[code_pos] = code;
-      code_pos = o++;
-      code = 1;
-      continue;
+  // One pass, a byte a step: a non-zero byte is copied; a zero closes the block (its code byte,
+  // the block's length + 1, is written back) and opens the next; a block of 254 copied bytes
+  // closes with code 0xFF and consumes no zero. A zero costs about what any other byte costs:
+  // sample data is often half zeros (firmware/core/README.md "Cost on the target").
+  const u8* const end = in + n;
+  u8* code = out;
+  u8* o = out + 1;
+  std::size_t room = 254;  // bytes the open block can still take
+  while (in != end) {
+    const u8 b = *in++;
+    if (b != 0) {
+      *o++ = b;
+      if (--room != 0) continue;
+      *code = 0xFF;
+      if (in == end) return static_cast<std::size_t>(o - out);  // no code byte follows
+    } else {
+      *code = static_cast<u8>(255 - room);
     }
-    out[o++] = in[k];
-    if (++code == 0xFF) {
-      out[code_pos] = code;
-      if (k + 1 == n) return o;  // a full block ends the input: no code byte follows
-      code_pos = o++;
-      code = 1;
-    }
+    code = o++;
+    room = 254;
   }
-  out[code_pos] = code;
-  return o;
+  *code = static_cast<u8>(255 - room);
+  return static_cast<std::size_t>(o - out);
 }
 
 int cobs_decode(const u8* in, std::size_t n, u8* out, std::size_t capacity) {

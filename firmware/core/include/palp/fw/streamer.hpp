@@ -122,9 +122,13 @@ void Streamer::pump(Emit&& emit, bool flush) {
     b.period_ns = config_.period_ns;
     b.channels = config_.channels;
     b.sample_count = static_cast<std::uint16_t>(take);
+    // one bounds check for the batch; every channel is one copy a sample (proto::pack_sample_at)
+    const std::size_t bytes = take * config_.bytes_per_sample;
     proto::Writer w(b.data.items.data(), b.data.items.size());
-    for (std::size_t k = 0; k < take; ++k) proto::pack_sample(w, backlog_.at(k).sample, b.channels);
-    b.data.size = static_cast<std::uint16_t>(w.size());
+    proto::u8* p = w.claim(bytes);
+    if (p == nullptr) return;  // cannot happen: configure() keeps batch_samples within the data
+    for (std::size_t k = 0; k < take; ++k) p = proto::pack_sample_at(p, backlog_.at(k).sample, b.channels);
+    b.data.size = static_cast<std::uint16_t>(bytes);
     if (!emit(static_cast<const proto::SampleBatch&>(b))) return;
     backlog_.drop_front(take);
   }
