@@ -113,6 +113,43 @@ TEST(Cobs, RoundTripsRandomDataOfEveryLengthUpTo600WithoutZeros) {
   }
 }
 
+// The textbook encoder (a byte a step, a code byte back-patched at every zero and every 254-byte
+// run), to hold the firmware's chunked one against.
+std::vector<u8> textbook_encode(const std::vector<u8>& in) {
+  std::vector<u8> out(1);
+  std::size_t code = 0;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    if (in[k] == 0) {
+      out[code] = static_cast<u8>(out.size() - code);
+      code = out.size();
+      out.push_back(0);
+      continue;
+    }
+    out.push_back(in[k]);
+    if (out.size() - code == 0xFF) {
+      out[code] = 0xFF;
+      if (k + 1 == in.size()) return out;
+      code = out.size();
+      out.push_back(0);
+    }
+  }
+  out[code] = static_cast<u8>(out.size() - code);
+  return out;
+}
+
+// Zeros from every other byte to one in 500 (runs past 254 bytes, blocks filling up inside and
+// across the encoder's chunks), every length up to 1100 (a whole frame).
+TEST(Cobs, EqualsTheTextbookEncoderForEveryZeroDensityAndLength) {
+  std::mt19937 rng(77);
+  for (const unsigned one_in : {2u, 4u, 40u, 200u, 500u}) {
+    for (std::size_t len = 0; len <= 1100; len += (len < 300 ? 1 : 7)) {
+      std::vector<u8> in(len);
+      for (auto& b : in) b = rng() % one_in == 0 ? 0 : static_cast<u8>(1 + rng() % 255);
+      ASSERT_EQ(encode(in), textbook_encode(in)) << "length " << len << ", zeros 1 in " << one_in;
+    }
+  }
+}
+
 TEST(Cobs, DecodeRejectsACodePastTheEnd) {
   const u8 in[] = {0x05, 0x11, 0x22};
   u8 out[8];
