@@ -69,16 +69,20 @@ constexpr u32 crc32_update_sliced(u32 state, const u8* data, std::size_t size) {
     return static_cast<u32>(p[0]) | (static_cast<u32>(p[1]) << 8) |
            (static_cast<u32>(p[2]) << 16) | (static_cast<u32>(p[3]) << 24);
   };
+  // one pointer a table: each look-up is one load (a single base with offsets costs an add each)
+  const u32 *t0 = t[0].data(), *t1 = t[1].data(), *t2 = t[2].data(), *t3 = t[3].data();
   for (; size >= N; size -= N, data += N) {
     const u32 lo = state ^ word(data);
-    state = t[N - 1][lo & 0xFFu] ^ t[N - 2][(lo >> 8) & 0xFFu] ^ t[N - 3][(lo >> 16) & 0xFFu] ^
-            t[N - 4][lo >> 24];
-    if constexpr (N == 8) {
+    if constexpr (N == 4) {
+      state = t3[lo & 0xFFu] ^ t2[(lo >> 8) & 0xFFu] ^ t1[(lo >> 16) & 0xFFu] ^ t0[lo >> 24];
+    } else {
       const u32 hi = word(data + 4);
-      state ^= t[3][hi & 0xFFu] ^ t[2][(hi >> 8) & 0xFFu] ^ t[1][(hi >> 16) & 0xFFu] ^ t[0][hi >> 24];
+      state = t[7][lo & 0xFFu] ^ t[6][(lo >> 8) & 0xFFu] ^ t[5][(lo >> 16) & 0xFFu] ^
+              t[4][lo >> 24] ^ t3[hi & 0xFFu] ^ t2[(hi >> 8) & 0xFFu] ^ t1[(hi >> 16) & 0xFFu] ^
+              t0[hi >> 24];
     }
   }
-  for (; size > 0; --size, ++data) state = t[0][(state ^ *data) & 0xFFu] ^ (state >> 8);
+  for (; size > 0; --size, ++data) state = t0[(state ^ *data) & 0xFFu] ^ (state >> 8);
   return state;
 }
 #ifndef PALP_CRC32_SLICES
