@@ -112,8 +112,14 @@ void Streamer::pump(Emit&& emit, bool flush) {
     // a batch is the run of consecutive indices at the front, at most batch_samples long; it is
     // sent when full, when a hole ends it (it cannot grow), or on flush
     const std::size_t avail = backlog_.size() < per_batch ? backlog_.size() : per_batch;
-    std::size_t take = 1;
-    while (take < avail && backlog_.at(take).index == backlog_.at(0).index + take) ++take;
+    // indices in the backlog only increase, so the run is whole when its last index says so (one
+    // look instead of a walk every pass: firmware/core/README.md "Cost on the target")
+    const std::uint32_t first = backlog_.at(0).index;
+    std::size_t take = avail;
+    if (backlog_.at(avail - 1).index != first + static_cast<std::uint32_t>(avail - 1)) {
+      take = 1;
+      while (take < avail && backlog_.at(take).index == first + take) ++take;
+    }
     const bool hole_follows = take < avail;
     if (take < per_batch && !hole_follows && !flush) return;
     proto::SampleBatch b;
