@@ -80,7 +80,7 @@ void percent(std::uint32_t permille) { console << dec(permille / 10) << '.' << d
 // dt): the current-sense reading of a live coil, which the sensor checks require (a reading
 // frozen while the loop swings the voltage is a current_sense_error).
 float coil_current_after(float i_A, float v_V, std::uint32_t rate_Hz) {
-  const float a = rate_Hz == 40000 ? 0.932360f : 0.869274243f;  // exp(-R / (L rate))
+  const float a = rate_Hz == 40000 ? 0.932348778f : 0.869274243f;  // exp(-R / (L rate))
   return i_A * a + v_V * ((1.0f - a) / 5.8f);
 }
 
@@ -153,13 +153,13 @@ Figures run(std::uint32_t rate_Hz, std::uint32_t ticks, std::uint64_t& wd_us, st
     wd_us = wd_us + 1'000'000 / rate_Hz;
     usb_credit += kUsbBytesPerSecond;
     if (k % kPassTicks == kPassTicks - 1) {
+      const auto credit = static_cast<std::size_t>(usb_credit / rate_Hz);  // not counted
+      const std::size_t room = credit < sizeof sink ? credit : sizeof sink;
       const std::uint32_t l = instructions_of([&] {
         controller.service();
-        const std::size_t room = static_cast<std::size_t>(usb_credit / rate_Hz);
-        const std::size_t n = controller.transmit(sink, room < sizeof sink ? room : sizeof sink);
-        usb_credit -= static_cast<std::uint64_t>(n) * rate_Hz;
-        sent = n;
+        sent = controller.transmit(sink, room);
       });
+      usb_credit -= static_cast<std::uint64_t>(sent) * rate_Hz;
       read_back(sink, sent);
       if (controller.tx_pending() == 0) usb_credit = 0;  // an idle link banks nothing
       loop_total += l;
