@@ -61,10 +61,10 @@ void Controller::load_program(const proto::FrameHeader& h, const M& m) {
   if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
   release();  // the synthesis (up to ~25 000 instructions) runs with the tick free
   std::uint8_t field = 255;
-  const ErrorCode e = staged_.load(m, params_.control_rate_Hz, field);
-  if (e != ErrorCode::ok) return nak(h, e, field);  // the live program stays as it was
+  const ErrorCode e = programs_.stage(m, params_.control_rate_Hz, field);
+  if (e != ErrorCode::ok) return nak(h, e, field);  // the loaded program stays as it was
   hold();
-  const ErrorCode a = programs_.adopt(staged_);
+  const ErrorCode a = programs_.adopt_staged();
   if (a != ErrorCode::ok) return nak(h, a, 255, busy_detail());
   program_rate_Hz_ = params_.control_rate_Hz;
   ack(h);
