@@ -14,7 +14,7 @@ static_assert(std::is_trivially_destructible_v<HoldProgram> &&
                   std::is_trivially_destructible_v<ContactWatchProgram>,
               "the union switches members by constructing over them");
 static_assert(std::is_trivially_copyable_v<ProgramRunner>,
-              "a runner loaded elsewhere can be copied over the live one (programs.hpp)");
+              "a runner is a plain value: tests and tools copy loaded runners");
 
 template <class Program, class Message>
 proto::ErrorCode ProgramRunner::stage_as(Program Slot::*member, proto::ProgramKind kind,

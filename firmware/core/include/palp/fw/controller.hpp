@@ -7,10 +7,13 @@
 // loop. Samples and events cross from tick() to the main loop through SPSC queues. A command acts
 // on the tick's state between two ticks: receive() holds the board's TickGuard (which masks the
 // control interrupt) from the moment a decoded request is handled until its reply is built, and
-// only then encodes the reply with the tick free. A Load* request's program is synthesised into
-// the runner's staging slot with the tick free (a 400-line multisine: ~25 000 instructions, 3-4
-// ticks) and adopted in a short held section (an index flip). Decoding, the reply's encoding and
-// service()/transmit() never hold the guard. palp-sim sets no guard (one thread calls both).
+// only then encodes the reply with the tick free; a handler releases it meanwhile for work that
+// reads only the message or main-loop state (controller_dispatch.cpp). A Load* request's program
+// is synthesised into the runner's staging slot with the tick free (a 400-line multisine:
+// ~25 000 instructions, 3-4 ticks) and adopted in a short held section (an index flip).
+// Decoding, the reply's encoding and service()/transmit() never hold the guard;
+// load_calibration_block() and set_identity() hold it for what they change. palp-sim sets no
+// guard (one thread calls everything).
 //
 // Time: device time is the tick count over the control rate (exact), anchored at the last rate
 // change (SetParams.control_rate_Hz) so it runs on continuously across it; the host heartbeat
