@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <memory>
 #include <thread>
 
 #include "../unit/pty_pair.hpp"
@@ -159,6 +160,36 @@ TEST(SerialUri, TheFarEndGoneMidSessionFailsTheNextRequestWithAConnectionError) 
   const auto t0 = Clock::now();
   EXPECT_THROW(probe.status(), palp::ConnectionError);
   EXPECT_LT(Clock::now() - t0, o.timeout) << "it waited out the request's timeout";
+}
+
+TEST(SerialUri, ATtyThatComesBackUnderItsNameAfterAHangUpRestoresTheSession) {
+  // A USB-serial adapter unplugged and plugged back gets its old name only once every file
+  // open on the old one is closed: the SDK must let go of the hung-up tty before it reopens the
+  // path. A pty behaves alike: its number is free again once the last fd on it is closed.
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok()) << sim.banner();
+  ASSERT_EQ(sim.control("pace 1"), "ok");
+  auto pty = std::make_unique<PtyPair>();
+  auto relay = std::make_unique<PtyRelay>(pty->master(), sim.device_port());
+  ASSERT_TRUE(pty->ok() && relay->ok());
+  const std::string name = pty->slave_name();
+  palp::Probe probe(pty->uri());
+  ASSERT_EQ(probe.status().state, palp::proto::DeviceState::idle);
+  relay.reset();  // the board's side goes: the relay's connection to palp-sim, the pty
+  pty.reset();
+  // the board comes back: a pty is given the lowest free number, the old one once it is free
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < 3s) {
+    pty = std::make_unique<PtyPair>();
+    if (pty->ok() && pty->slave_name() == name) break;
+    pty.reset();
+    std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_TRUE(pty) << name << " stayed taken: the SDK kept the hung-up tty open";
+  relay = std::make_unique<PtyRelay>(pty->master(), sim.device_port());
+  ASSERT_TRUE(relay->ok());
+  EXPECT_EQ(probe.status().state, palp::proto::DeviceState::idle);
+  EXPECT_EQ(probe.health().reconnects, 1u);
 }
 
 }  // namespace
