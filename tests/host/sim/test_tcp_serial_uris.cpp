@@ -86,9 +86,9 @@ TEST(TcpUri, NothingListeningIsAConnectionErrorNamingTheUriAsGiven) {
     palp::open_transport(uri, 500ms);
     FAIL() << "connected to a stopped simulator";
   } catch (const palp::ConnectionError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "cannot reach " + uri + ": Connection refused (is palp-sim, or QEMU with "
-              "-serial tcp:HOST:PORT,server=on, listening there?)");
+    EXPECT_EQ(std::string(e.what()), "cannot reach " + uri +
+                                         ": Connection refused (is palp-sim, or QEMU with "
+                                         "-serial tcp:HOST:PORT,server=on, listening there?)");
   }
 }
 
