@@ -77,7 +77,7 @@ endforeach()
 if(qemu_pid STREQUAL "")
   message(FATAL_ERROR "QEMU did not start on any of 8 ports; its last words: ${log}")
 endif()
-set(uri "sim://127.0.0.1:${port}")
+set(uri "tcp://127.0.0.1:${port}")
 message(STATUS "QEMU (pid ${qemu_pid}) serves the image on ${uri}")
 
 set(failure "")
