@@ -3,7 +3,13 @@
 //
 //   usb://[serial][?vid=0x1209&pid=0x0001]   libusb, the vendor interface's bulk endpoints
 //   hid://[serial][?vid=0x1209&pid=0x0001]   hidapi, 64-byte reports (about 64 KB/s at most)
-//   sim://host:port                          palp-sim over TCP
+//   tcp://host:port                          the framed byte stream over TCP: palp-sim, or the
+//                                            firmware under QEMU (-serial tcp:...,server=on)
+//   serial:///dev/ttyX[?baud=N]              a UART-attached board: the tty opened raw (8N1, no
+//                                            flow control), N baud (default 115200, a termios
+//                                            speed); locked (flock) so no second host shares it;
+//                                            it carries at most N/10 bytes/s
+//   sim://host:port                          palp-sim over TCP (the same as tcp://host:port)
 //   sim:///path/to/socket                    palp-sim over a Unix-domain socket
 //   sim+inproc://PHANTOM[?seed=N&...]        palp-sim linked into this program: no process, no
 //                                            socket, virtual time as fast as the reader reads
@@ -30,14 +36,21 @@
 
 namespace palp {
 
+/// serial:// without ?baud=: the usual UART rate (a pty, and QEMU's UART, ignore it).
+inline constexpr std::uint32_t kDefaultBaud = 115200;
+
+/// The baud rates serial:// accepts: the termios speeds, ascending.
+std::span<const std::uint32_t> serial_bauds();
+
 /// A parsed transport URI.
 struct Uri {
-  enum class Scheme { usb, hid, sim_tcp, sim_unix, sim_inproc };
+  enum class Scheme { usb, hid, sim_tcp, sim_unix, sim_inproc, tcp, serial };
   Scheme scheme = Scheme::sim_tcp;
   std::string serial;          ///< usb, hid: the serial number wanted ("" = the only one)
-  std::string host;            ///< sim_tcp
-  std::uint16_t port = 0;      ///< sim_tcp
-  std::string path;            ///< sim_unix
+  std::string host;            ///< sim_tcp, tcp
+  std::uint16_t port = 0;      ///< sim_tcp, tcp
+  std::string path;            ///< sim_unix: the socket; serial: the tty device
+  std::uint32_t baud = kDefaultBaud;  ///< serial: a termios speed (serial_bauds())
   std::string phantom;         ///< sim_inproc: the phantom's name ("none": free air)
   /// sim_inproc: key=value parameters in order, checked by the in-process simulator
   std::vector<std::pair<std::string, std::string>> parameters;
@@ -69,8 +82,10 @@ class Transport {
   virtual const std::string& uri() const = 0;
 };
 
-/// Opens the transport a URI names. Throws ConfigError for a malformed URI, ConnectionError
-/// when the device is absent or cannot be opened (the message says why and what to try).
+/// Opens the transport a URI names. Throws ConfigError for a malformed URI (and for a serial://
+/// path that is not a terminal), ConnectionError when the device is absent or cannot be opened:
+/// nothing listening, no such tty, permission denied, a tty another program holds (the message
+/// says why and what to try).
 std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseconds timeout);
 std::unique_ptr<Transport> open_transport(const std::string& uri,
                                           std::chrono::milliseconds timeout);

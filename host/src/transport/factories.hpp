@@ -8,7 +8,8 @@
 
 namespace palp::detail {
 
-std::unique_ptr<Transport> open_sim_transport(const Uri& uri, std::chrono::milliseconds timeout);
+std::unique_ptr<Transport> open_socket_transport(const Uri& uri, std::chrono::milliseconds timeout);
+std::unique_ptr<Transport> open_serial_transport(const Uri& uri, std::chrono::milliseconds timeout);
 std::unique_ptr<Transport> open_usb_transport(const Uri& uri, std::chrono::milliseconds timeout);
 std::unique_ptr<Transport> open_hid_transport(const Uri& uri, std::chrono::milliseconds timeout);
 

@@ -15,8 +15,10 @@ std::unique_ptr<Transport> open_transport(const Uri& uri, std::chrono::milliseco
   switch (uri.scheme) {
     case Uri::Scheme::usb: return detail::open_usb_transport(uri, timeout);
     case Uri::Scheme::hid: return detail::open_hid_transport(uri, timeout);
+    case Uri::Scheme::tcp:
     case Uri::Scheme::sim_tcp:
-    case Uri::Scheme::sim_unix: return detail::open_sim_transport(uri, timeout);
+    case Uri::Scheme::sim_unix: return detail::open_socket_transport(uri, timeout);
+    case Uri::Scheme::serial: return detail::open_serial_transport(uri, timeout);
     case Uri::Scheme::sim_inproc:
       if (const TransportFactory f = g_sim_inproc.load()) return f(uri, timeout);
       throw ConfigError("transport URI '" + uri.text +

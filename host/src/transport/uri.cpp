@@ -4,14 +4,16 @@
 
 #include "palp/error.hpp"
 #include "palp/transport.hpp"
+#include "transport/serial_speeds.hpp"
 
 namespace palp {
 namespace {
 
 [[noreturn]] void bad(const std::string& text, const std::string& why) {
   throw ConfigError("transport URI '" + text + "': " + why +
-                    " (expected usb://[serial], hid://[serial], sim://host:port, "
-                    "sim:///path/to/socket or sim+inproc://phantom[?key=value&...])");
+                    " (expected tcp://host:port, serial:///dev/ttyX[?baud=N], usb://[serial], "
+                    "hid://[serial], sim://host:port, sim:///path/to/socket or "
+                    "sim+inproc://phantom[?key=value&...])");
 }
 
 std::uint16_t parse_u16(const std::string& text, std::string_view v, const char* what) {
@@ -25,6 +27,25 @@ std::uint16_t parse_u16(const std::string& text, std::string_view v, const char*
   if (ec != std::errc{} || p != v.data() + v.size() || v.empty() || value > 0xFFFF)
     bad(text, std::string(what) + " '" + std::string(v) + "' is not a number from 0 to 65535");
   return static_cast<std::uint16_t>(value);
+}
+
+/// host:port after scheme:// (sim://, tcp://) into u.host and u.port.
+void parse_host_port(const std::string& text, const std::string& scheme, const std::string& rest,
+                     Uri& u) {
+  const std::size_t colon = rest.rfind(':');
+  if (colon == std::string::npos || colon == 0) bad(text, scheme + ":// needs host:port");
+  u.host = rest.substr(0, colon);
+  u.port = parse_u16(text, std::string_view(rest).substr(colon + 1), "port");
+  if (u.port == 0) bad(text, "port 0 is not a port to connect to");
+}
+
+std::uint32_t parse_baud(const std::string& text, std::string_view v) {
+  std::uint32_t baud = 0;
+  const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), baud);
+  if (ec != std::errc{} || p != v.data() + v.size() || v.empty())
+    bad(text, "baud '" + std::string(v) + "' is not a number");
+  if (!detail::termios_speed(baud)) bad(text, detail::unsupported_baud(baud));
+  return baud;
 }
 
 /// Calls f(key, value) for each key=value of a query ("a=1&b=2").
@@ -49,18 +70,29 @@ Uri parse_uri(const std::string& text) {
   if (sep == std::string::npos) bad(text, "no scheme");
   const std::string scheme = text.substr(0, sep);
   std::string rest = text.substr(sep + 3);
-  if (scheme == "sim") {
-    if (!rest.empty() && rest[0] == '/') {
+  if (scheme == "sim" || scheme == "tcp") {
+    if (scheme == "sim" && !rest.empty() && rest[0] == '/') {
       u.scheme = Uri::Scheme::sim_unix;
       u.path = rest;
       return u;
     }
-    u.scheme = Uri::Scheme::sim_tcp;
-    const std::size_t colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0) bad(text, "sim:// needs host:port");
-    u.host = rest.substr(0, colon);
-    u.port = parse_u16(text, std::string_view(rest).substr(colon + 1), "port");
-    if (u.port == 0) bad(text, "port 0 is not a port to connect to");
+    u.scheme = scheme == "sim" ? Uri::Scheme::sim_tcp : Uri::Scheme::tcp;
+    parse_host_port(text, scheme, rest, u);
+    return u;
+  }
+  if (scheme == "serial") {
+    u.scheme = Uri::Scheme::serial;
+    const std::size_t q = rest.find('?');
+    u.path = rest.substr(0, q);
+    if (u.path.size() < 2 || u.path[0] != '/')
+      bad(text, "serial:// needs the tty's absolute path (serial:///dev/ttyUSB0)");
+    if (q != std::string::npos)
+      for_each_parameter(text, std::string_view(rest).substr(q + 1),
+                         [&](std::string_view key, std::string_view value) {
+                           if (key == "baud") u.baud = parse_baud(text, value);
+                           else bad(text, "unknown parameter '" + std::string(key) +
+                                              "' (known: baud)");
+                         });
     return u;
   }
   if (scheme == "sim+inproc") {

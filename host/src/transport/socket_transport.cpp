@@ -1,4 +1,5 @@
-// sim://host:port and sim:///path: palp-sim's byte stream over a TCP or Unix-domain socket.
+// tcp://host:port, sim://host:port and sim:///path: the framed byte stream over a TCP or
+// Unix-domain socket (palp-sim, or the firmware under QEMU with its UART on a TCP server).
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netdb.h>
@@ -14,57 +15,10 @@
 
 #include "palp/error.hpp"
 #include "transport/factories.hpp"
+#include "transport/fd_transport.hpp"
 
 namespace palp::detail {
 namespace {
-
-class SimTransport final : public Transport {
- public:
-  SimTransport(int fd, std::string uri) : fd_(fd), uri_(std::move(uri)) {}
-  ~SimTransport() override { ::close(fd_); }
-
-  void write(std::span<const std::uint8_t> bytes, std::chrono::milliseconds timeout) override {
-    std::size_t off = 0;
-    while (off < bytes.size()) {
-      pollfd p{fd_, POLLOUT, 0};
-      const int r = ::poll(&p, 1, static_cast<int>(timeout.count()));
-      if (r < 0 && errno == EINTR) continue;
-      if (r == 0)
-        throw TimeoutError("palp-sim at " + uri_ + " to take " +
-                               std::to_string(bytes.size() - off) + " bytes",
-                           static_cast<double>(timeout.count()) / 1000.0, std::nullopt);
-      const ssize_t n = ::send(fd_, bytes.data() + off, bytes.size() - off, MSG_NOSIGNAL);
-      if (n < 0) {
-        if (errno == EINTR || errno == EAGAIN) continue;
-        throw ConnectionError("palp-sim at " + uri_ + ": send failed: " + std::strerror(errno));
-      }
-      off += static_cast<std::size_t>(n);
-    }
-  }
-
-  std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
-    pollfd p{fd_, POLLIN, 0};
-    const int r = ::poll(&p, 1, static_cast<int>(timeout.count()));
-    if (r < 0 && errno == EINTR) return 0;
-    if (r <= 0) return 0;
-    const ssize_t n = ::recv(fd_, buf.data(), buf.size(), 0);
-    if (n == 0) throw ConnectionError("palp-sim at " + uri_ + " closed the connection");
-    if (n < 0) {
-      if (errno == EINTR || errno == EAGAIN) return 0;
-      throw ConnectionError("palp-sim at " + uri_ + ": receive failed: " + std::strerror(errno));
-    }
-    return static_cast<std::size_t>(n);
-  }
-
-  // A socket has no fixed ceiling; palp-sim stalls rather than drops. The figure is what the
-  // simulator can produce at 40 kHz with every channel, many times over.
-  std::uint32_t max_device_bytes_per_s() const override { return 100'000'000u; }
-  const std::string& uri() const override { return uri_; }
-
- private:
-  int fd_;
-  std::string uri_;
-};
 
 int connect_with_timeout(int fd, const sockaddr* addr, socklen_t len,
                          std::chrono::milliseconds timeout) {
@@ -92,11 +46,24 @@ int connect_with_timeout(int fd, const sockaddr* addr, socklen_t len,
 
 }  // namespace
 
-std::unique_ptr<Transport> open_sim_transport(const Uri& uri, std::chrono::milliseconds timeout) {
+std::unique_ptr<Transport> open_socket_transport(const Uri& uri,
+                                                 std::chrono::milliseconds timeout) {
+  const bool tcp = uri.scheme == Uri::Scheme::tcp;
   const auto fail = [&](const std::string& why) -> std::unique_ptr<Transport> {
+    if (tcp)
+      throw ConnectionError("cannot reach " + uri.text + ": " + why +
+                            " (is palp-sim, or QEMU with -serial tcp:HOST:PORT,server=on, "
+                            "listening there?)");
     throw ConnectionError("cannot reach palp-sim at " + uri.text + ": " + why +
                           " (is palp-sim running? start it with `palp-sim` and use the address "
                           "its first line prints)");
+  };
+  // palp-sim stalls rather than drops, so a socket has no fixed ceiling; the figure is what the
+  // simulator can produce at 40 kHz with every channel, many times over
+  const auto connected = [&](int fd) -> std::unique_ptr<Transport> {
+    return std::make_unique<FdTransport>(
+        fd, FdPeer{uri.text, (tcp ? "the controller at " : "palp-sim at ") + uri.text, true,
+                   100'000'000u});
   };
   if (uri.scheme == Uri::Scheme::sim_unix) {
     sockaddr_un addr{};
@@ -109,7 +76,7 @@ std::unique_ptr<Transport> open_sim_transport(const Uri& uri, std::chrono::milli
       ::close(fd);
       return fail(why);
     }
-    return std::make_unique<SimTransport>(fd, uri.text);
+    return connected(fd);
   }
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
@@ -126,7 +93,7 @@ std::unique_ptr<Transport> open_sim_transport(const Uri& uri, std::chrono::milli
       ::freeaddrinfo(res);
       int one = 1;
       ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-      return std::make_unique<SimTransport>(fd, uri.text);
+      return connected(fd);
     }
     why = std::strerror(errno);
     ::close(fd);
