@@ -2,6 +2,8 @@
 // the bench that PALP_BENCH_URI names, checked once; the Scenario fixture; main().
 #include "bench.hpp"
 
+#include <sys/wait.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -15,8 +17,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-/// The SDK scheme of a plain framed byte stream over TCP (palp-sim's and QEMU's sockets).
-constexpr const char* kSocketScheme = "sim://";
 
 /// palp-sim placed like the QEMU image's plant (firmware/board/qemu/plant/README.md): the
 /// phantom, and the mount that puts the floating tip (0.5 A) just on its surface.
@@ -59,7 +59,7 @@ std::string start_palp_sim(std::unique_ptr<Child>& child, std::string& error) {
     child.reset();
     return {};
   }
-  return kSocketScheme + line.substr(at + key.size(), end - at - key.size());
+  return "sim://" + line.substr(at + key.size(), end - at - key.size());
 }
 
 std::string describe(const DeviceInfo& d) {
@@ -130,12 +130,15 @@ void Bench::start_qemu(const std::string& image) {
       failure_ = device_->error();
       break;
     }
-    uri_ = std::string(kSocketScheme) + "127.0.0.1:" + std::to_string(port);
+    uri_ = "tcp://127.0.0.1:" + std::to_string(port);
     while (Clock::now() < give_up) {
       if (device_->exited()) {
         const std::string err = device_->stderr_text();
         if (err.find("Address already in use") != std::string::npos) break;  // the next port
-        failure_ = "QEMU exited before the image answered (" + device_->command() + "): " + err;
+        failure_ = WIFEXITED(device_->exit_status()) && WEXITSTATUS(device_->exit_status()) == 127
+                       ? "qemu-system-arm not found: run scripts/install-deps (or apt-get install "
+                         "--no-install-recommends qemu-system-arm)"
+                       : "QEMU exited before the image answered (" + device_->command() + "): " + err;
         break;
       }
       try {

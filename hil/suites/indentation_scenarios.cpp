@@ -76,8 +76,8 @@ Descriptors descriptors(const IndentationRun& run, const char* where) {
 
 // The agreement of the image under QEMU with palp-sim placed like its plant
 // (firmware/board/qemu/plant/README.md states the scene and the model's tolerances).
-constexpr double kAgreeK = 0.10;       // relative
-constexpr double kAgreeDelta0 = 0.10;  // relative
+constexpr double kAgreeK = 0.05;       // relative
+constexpr double kAgreeDelta0 = 0.05;  // relative
 
 using Indentation = Scenario;
 TEST_F(Indentation, AShortStaircaseGivesFiniteKAndDelta0ConsistentWithTheModelAndTheReference) {
