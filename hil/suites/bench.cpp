@@ -138,7 +138,8 @@ void Bench::start_qemu(const std::string& image) {
         failure_ = WIFEXITED(device_->exit_status()) && WEXITSTATUS(device_->exit_status()) == 127
                        ? "qemu-system-arm not found: run scripts/install-deps (or apt-get install "
                          "--no-install-recommends qemu-system-arm)"
-                       : "QEMU exited before the image answered (" + device_->command() + "): " + err;
+                       : "QEMU exited (status " + std::to_string(device_->exit_status()) +
+                             ") before the image answered (" + device_->command() + "): " + err;
         break;
       }
       try {
