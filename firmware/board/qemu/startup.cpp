@@ -26,6 +26,13 @@ extern void (*const __init_array_end[])();
 
 [[noreturn]] void palp_reset_handler();
 [[noreturn]] void palp_unexpected_exception();
+
+// The interrupts an image may handle: weak, so an image that defines none of them (the test
+// images) keeps the unexpected-exception handler there. IRQ numbers: QEMU hw/arm/mps2.c (UART0
+// receive 0 and transmit 1, timer 0 IRQ 8; cmsdk_uart.hpp, cmsdk_timer.hpp).
+[[gnu::weak]] void palp_irq_uart0_rx() { palp_unexpected_exception(); }
+[[gnu::weak]] void palp_irq_uart0_tx() { palp_unexpected_exception(); }
+[[gnu::weak]] void palp_irq_timer0() { palp_unexpected_exception(); }
 }
 
 namespace {
@@ -51,7 +58,8 @@ void write_text(const char* s) {
 }  // namespace
 
 // Every exception other than reset is unexpected in a test image: it ends the run with exit code
-// 3 and names the exception, so a fault fails a test at once instead of at its timeout.
+// 3 and names the exception, so a fault fails a test at once instead of at its timeout. The
+// firmware image handles the three interrupts above (qemu_board.cpp).
 extern "C" [[gnu::section(".isr_vector"), gnu::used]] const VectorTable palp_vector_table = {
     __stack_top,
     {
@@ -72,8 +80,9 @@ extern "C" [[gnu::section(".isr_vector"), gnu::used]] const VectorTable palp_vec
         kUnexpected,         // 15 SysTick
     },
     {
-        kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected,
-        kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected,
+        palp_irq_uart0_rx, palp_irq_uart0_tx, kUnexpected, kUnexpected,  // IRQ 0-3
+        kUnexpected, kUnexpected, kUnexpected, kUnexpected,              // IRQ 4-7
+        palp_irq_timer0, kUnexpected, kUnexpected, kUnexpected,          // IRQ 8-11
         kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected,
         kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected,
         kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected, kUnexpected,
