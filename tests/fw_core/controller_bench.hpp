@@ -26,7 +26,8 @@ class Bench {
  public:
   /// A controller with a host session open (a compatible Hello, its reply discarded), or none.
   enum class Start { with_session, without_hello };
-  explicit Bench(Start start = Start::with_session) : c_(identity()) {
+  explicit Bench(Start start = Start::with_session, const DeviceIdentity& id = identity())
+      : c_(id) {
     if (start == Start::without_hello) return;
     send(Hello{kProtocolMajor, kProtocolMinor, kSchemaHash, "bench"}, 0);
     pump();

@@ -316,7 +316,7 @@ TEST(NakFields, BadPayloadNamesNoFieldAndStreamTooFastNamesDecimation) {
   EXPECT_EQ(naks[0].detail, 0);
   EXPECT_EQ(naks[1].error, ErrorCode::stream_too_fast);
   EXPECT_EQ(naks[1].field_index, 1);  // StreamConfigure #1 decimation
-  EXPECT_EQ(naks[1].detail, 0);
+  EXPECT_EQ(naks[1].detail, 10000);   // the device's max_stream_rate_Hz (SPEC.md §9.1)
 }
 
 TEST(NakFields, NoProgramSaysWhetherNothingIsLoadedOrTheRateChanged) {

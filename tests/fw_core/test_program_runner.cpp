@@ -81,6 +81,46 @@ TEST(ProgramRunner, RefusedLoadKeepsThePreviousProgram) {
   EXPECT_EQ(r.state(), ProgramState::loaded);
 }
 
+TEST(ProgramRunner, AdoptingAStagedProgramRunsTickForTickAsLoadingItHere) {
+  proto::LoadMultisine m;  // the default 90 lines
+  const ProgramRunner direct = loaded(m);
+  ProgramRunner live = loaded(sine_5Hz(1));
+  const ProgramRunner staged = loaded(m);
+  ASSERT_EQ(live.adopt(staged), ErrorCode::ok);
+  EXPECT_EQ(live.kind(), proto::ProgramKind::multisine);
+  EXPECT_EQ(live.state(), ProgramState::loaded);
+  ProgramRunner a = direct;
+  ASSERT_EQ(a.start(kT0, 0), ErrorCode::ok);
+  ASSERT_EQ(live.start(kT0, 0), ErrorCode::ok);
+  for (std::uint64_t k = 0; k < 20000; ++k)
+    ASSERT_EQ(live.step(kT0 + k, 0).current_A, a.step(kT0 + k, 0).current_A) << k;
+}
+
+TEST(ProgramRunner, AdoptKeepsAContactHoldAndItsLatchAndIsRefusedWhileRunning) {
+  proto::LoadContactWatch watch;  // 0.5 A, 200 counts
+  ProgramRunner live = loaded(watch);
+  live.start(kT0, 0);
+  live.step(kT0, 200);  // contact at once
+  ASSERT_TRUE(live.contact_latched());
+  proto::LoadHold hold;
+  hold.current_A = 0.3f;
+  ProgramRunner staged = loaded(hold);
+  ASSERT_EQ(live.adopt(staged), ErrorCode::ok);
+  EXPECT_TRUE(live.contact_latched());
+  EXPECT_EQ(live.rest_current_A(), 0.5f);
+  EXPECT_EQ(live.end(), ProgramEnd::contact);
+  EXPECT_EQ(live.step(kT0 + 1, 200).current_A, 0.5f);
+  ASSERT_EQ(live.start(kT0 + 2, 200), ErrorCode::ok);
+  EXPECT_FALSE(live.contact_latched());
+  EXPECT_EQ(live.step(kT0 + 2, 200).current_A, 0.3f);
+  EXPECT_EQ(live.adopt(loaded(sine_5Hz(1))), ErrorCode::busy);
+  EXPECT_EQ(live.kind(), proto::ProgramKind::hold);
+  ProgramRunner idle;
+  live.stop(kT0 + 3);
+  EXPECT_EQ(live.adopt(idle), ErrorCode::no_program);
+  EXPECT_EQ(live.kind(), proto::ProgramKind::hold);
+}
+
 // ---- validation -------------------------------------------------------------------------------
 
 TEST(ProgramValidation, CatalogueRangesAreCheckedFirstAndNameTheField) {

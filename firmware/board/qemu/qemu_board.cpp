@@ -72,6 +72,7 @@ fw::DeviceIdentity QemuBoard::identity() const {
   id.board = kName;
   id.serial = kSerial;
   id.git_hash = PALP_GIT_HASH;
+  id.max_stream_rate_Hz = kMaxStreamRate_Hz;
   return id;
 }
 
@@ -101,29 +102,41 @@ bool QemuBoard::start_tick(std::uint32_t rate_Hz, app::TickHandler handler) {
   tick_ = handler;
   tick_period_clocks_ = timer::kClock_Hz / rate_Hz;
   dt_s_ = 1.0f / static_cast<float>(rate_Hz);
-  // the first tick falls due RELOAD clocks after the start, then one every period
-  // (cmsdk_timer.hpp [QT]); the grid below is at most the few clocks of these writes early
   const std::uint32_t reload = timer::reload_for_period(tick_period_clocks_);
-  first_due_clocks_ = now_clocks() + reload;
-  last_due_index_ = -1;
+  tick_served_ = false;  // the first tick at this rate is due alone
+  backlog_ = 0;
+  max_backlog_ = static_cast<std::uint64_t>(kMaxBacklog_s * static_cast<float>(rate_Hz));
   timer::reg(kTick, timer::kReload) = reload;
   timer::reg(kTick, timer::kCtrl) = timer::kCtrlEnable | timer::kCtrlIrqEnable;
-  nvic::enable(timer::kTimer0Irq);
+  if (!tick_held_) nvic::enable(timer::kTimer0Irq);
   return true;
 }
 
 void QemuBoard::on_tick_irq() {
   timer::reg(kTick, timer::kIntStatus) = timer::kIntStatusIrq;
-  // which tick of the grid this is: more than one past the previous one means the interrupt was
-  // still pending (or held) when a later tick fell due, and those ticks never ran
-  const std::uint64_t now = now_clocks();
-  const std::int64_t due = now < first_due_clocks_
-                               ? 0
-                               : static_cast<std::int64_t>((now - first_due_clocks_) /
-                                                           tick_period_clocks_);
-  if (due > last_due_index_ + 1) missed_ticks_ += static_cast<std::uint32_t>(due - last_due_index_ - 1);
-  last_due_index_ = due > last_due_index_ ? due : last_due_index_ + 1;
-  tick_.run(tick_.ctx);
+  // When did the timer last expire? VALUE counts down from RELOAD after the expiry (at which it
+  // read 0), so the expiry was (period - VALUE) mod period clocks ago (cmsdk_timer.hpp [QT]).
+  // Each period since the expiry the previous interrupt served is one tick due: more than one
+  // means the interrupt was still pending (or held) when a later expiry came.
+  const std::uint32_t value = timer::reg(kTick, timer::kValue);
+  const std::uint64_t expiry =
+      now_clocks() - (tick_period_clocks_ - value) % tick_period_clocks_;
+  std::uint64_t due = 1;
+  if (tick_served_)
+    due = (expiry - last_expiry_clocks_ + tick_period_clocks_ / 2) / tick_period_clocks_;
+  last_expiry_clocks_ = expiry;
+  tick_served_ = true;
+  // Catch up: the due ticks run back to back, at most kCatchUpPerIrq per interrupt (the main
+  // loop runs between them); a backlog beyond kMaxBacklog_s is dropped and reported.
+  backlog_ += due;
+  if (backlog_ > max_backlog_) {
+    missed_ticks_ += static_cast<std::uint32_t>(backlog_ - max_backlog_);
+    backlog_ = max_backlog_;
+  }
+  for (std::uint32_t k = 0; k < kCatchUpPerIrq && backlog_ > 0; ++k) {
+    --backlog_;
+    tick_.run(tick_.ctx);
+  }
 }
 
 void QemuBoard::read_inputs(fw::TickInputs& in) {
@@ -133,13 +146,21 @@ void QemuBoard::read_inputs(fw::TickInputs& in) {
   in.pressure_codes = s.pressure_codes;
   in.supply_V = s.supply_V;
   in.driver_fault = false;
+  in.missed_ticks = missed_ticks_;
+  missed_ticks_ = 0;
 }
 
 void QemuBoard::apply_outputs(const fw::TickOutputs& out) { plant_.step(out.v_coil_V, dt_s_); }
 
-void QemuBoard::hold_tick() { nvic::disable(timer::kTimer0Irq); }
+void QemuBoard::hold_tick() {
+  tick_held_ = true;
+  nvic::disable(timer::kTimer0Irq);
+}
 
-void QemuBoard::release_tick() { nvic::enable(timer::kTimer0Irq); }
+void QemuBoard::release_tick() {
+  tick_held_ = false;
+  if (tick_.run != nullptr) nvic::enable(timer::kTimer0Irq);
+}
 
 // ---- the clock ----------------------------------------------------------------------------------
 

@@ -6,8 +6,13 @@
 //                Transmit from the main loop, one byte per write while the UART takes it; when
 //                QEMU's chardev is busy the transmit interrupt wakes the main loop.
 //   tick         CMSDK timer 0, periodic at the control rate (25 MHz / rate clocks), its
-//                interrupt masked alone by hold_tick(); a tick that was due while the previous
-//                one was still pending or held is counted in missed_ticks().
+//                interrupt masked alone by hold_tick(). Without -icount QEMU runs the timer on
+//                host time and the CPU when the host schedules it: a timer interrupt still
+//                pending when the next expiry comes would lose a tick. The tick handler finds
+//                each expiry from the clock and the timer's count, and runs the ticks that fell
+//                due back to back (catch-up, at most kCatchUpPerIrq per interrupt), so device
+//                time keeps up with host time; a backlog beyond kMaxBacklog_s is dropped and
+//                reported in TickInputs::missed_ticks (the core counts control overruns).
 //   clock        CMSDK timer 1 free-running over its whole 32-bit range at 25 MHz, extended to
 //                64 bits in software (read at least every tick, far within its 171.8 s wrap).
 //   sensors      a plant on the target (FloatPlant): sensors() before the core's tick, step()
@@ -24,7 +29,7 @@
 #include "palp/app/board.hpp"
 #include "palp/fw/calibration.hpp"
 #include "palp/fw/spsc_queue.hpp"
-#include "placeholder_plant.hpp"
+#include "float_plant.hpp"
 
 namespace palp::qemu {
 
@@ -34,8 +39,14 @@ class QemuBoard {
   static constexpr const char* kSerial = "QEMU-AN386-0001";
   /// QEMU's exit status when the host asks for the bootloader.
   static constexpr int kBootloaderExitCode = 42;
+  /// The stream rate the emulated UART carries with margin, all 11 channels (firmware/README.md:
+  /// measured about 215 KB/s; 2 kHz is 50 KB/s).
+  static constexpr std::uint32_t kMaxStreamRate_Hz = 2000;
   /// Received bytes buffered between the UART interrupt and the main loop.
   static constexpr std::size_t kRxRing = 1024;
+  /// Catch-up: late ticks run per tick interrupt at most, and the longest backlog kept.
+  static constexpr std::uint32_t kCatchUpPerIrq = 32;
+  static constexpr float kMaxBacklog_s = 0.1f;
 
   /// Sets up the UART, the clock and the NVIC; the tick starts with start_tick().
   QemuBoard();
@@ -49,7 +60,6 @@ class QemuBoard {
   void apply_outputs(const fw::TickOutputs& out);
   void hold_tick();
   void release_tick();
-  std::uint32_t missed_ticks() const { return missed_ticks_; }
 
   std::uint64_t now_us();
 
@@ -72,9 +82,12 @@ class QemuBoard {
 
   app::TickHandler tick_{};
   std::uint32_t tick_period_clocks_ = 0;
-  std::uint64_t first_due_clocks_ = 0;  // when tick 0 of the current rate fell due
-  std::int64_t last_due_index_ = -1;    // the grid index of the last tick that ran
-  std::uint32_t missed_ticks_ = 0;
+  std::uint64_t last_expiry_clocks_ = 0;  // the timer expiry the last tick served
+  bool tick_served_ = false;              // one was served at the current rate
+  bool tick_held_ = false;                // between hold_tick() and release_tick()
+  std::uint64_t backlog_ = 0;       // ticks due and not run yet
+  std::uint64_t max_backlog_ = 0;   // kMaxBacklog_s in ticks at the current rate
+  std::uint32_t missed_ticks_ = 0;  // dropped from the backlog, not yet reported
   float dt_s_ = 0.0f;
 
   std::uint64_t clock_total_ = 0;     // clocks since boot, at clock_last_

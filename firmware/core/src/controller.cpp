@@ -30,11 +30,13 @@ constexpr std::uint16_t bit(proto::StatusBit b) {
 Controller::Controller(const DeviceIdentity& identity) : identity_(identity) {
   apply_params(params_);
   apply_calibration(calibration_);
-  // the stream starts with the catalogue's default configuration (all channels, 10 kHz)
+  // the stream starts with the catalogue's default configuration (all channels, 10 kHz), slowed
+  // to the board's max_stream_rate_Hz if that is lower
   proto::StreamConfig ignored;
   std::uint8_t field = 255;
   streamer_.configure(proto::StreamConfigure{}, params_.control_rate_Hz, ignored, field);
   pressure_.set_decimation(streamer_.config().decimation);
+  fit_stream_to_max_rate();
 }
 
 std::uint64_t Controller::us_of_tick(std::uint64_t tick) const {
@@ -49,6 +51,7 @@ std::uint64_t Controller::device_time_us() const { return us_of_tick(tick_); }
 void Controller::tick(const TickInputs& in, TickOutputs& out) {
   const float dt = dt_s();
   const std::uint64_t now = tick_;
+  counters_.control_overruns += in.missed_ticks;
 
   // sensors
   if (!encoder_started_) {

@@ -4,6 +4,12 @@
 // first in this order wins (SPEC.md §6.3): the frame reader's unknown_message and bad_payload,
 // wrong_direction, the Hello gate (hello_required, incompatible_host), then each request's own
 // checks in the order the handler below makes them.
+//
+// The tick guard (controller.hpp): handle() holds it from the Hello gate to the reply, which
+// releases it before encoding. Handlers whose costly part reads only the message or main-loop
+// state release it for that part: CommitCalibration (the CRC), SetCalibration (the checks),
+// SetParams and StreamConfigure (the stream's figures), Load* (the synthesis, load_program()).
+#include <algorithm>
 #include <type_traits>
 
 #include "palp/fw/controller.hpp"
@@ -21,12 +27,76 @@ void Controller::receive(const std::uint8_t* data, std::size_t size,
                          std::uint64_t watchdog_now_us) {
   reader_.feed_messages(
       data, size,
-      [&](const proto::FrameHeader& h, const auto& m) { dispatch(h, m, watchdog_now_us); },
+      [&](const proto::FrameHeader& h, const auto& m) { handle(h, m, watchdog_now_us); },
       [&](proto::Reject r, const proto::FrameHeader* h) {
         if (h == nullptr) return;  // frame-level: no header to answer (SPEC.md §4.5)
         nak(*h, r == proto::Reject::unknown_message ? proto::ErrorCode::unknown_message
                                                     : proto::ErrorCode::bad_payload);
       });
+}
+
+void Controller::hold() {
+  if (held_) return;
+  if (guard_.hold != nullptr) guard_.hold(guard_.ctx);
+  held_ = true;
+}
+
+void Controller::release() {
+  if (!held_) return;
+  held_ = false;
+  if (guard_.release != nullptr) guard_.release(guard_.ctx);
+}
+
+template <class M>
+void Controller::handle(const proto::FrameHeader& h, const M& m, std::uint64_t wd_now_us) {
+  hold();
+  dispatch(h, m, wd_now_us);
+  release();
+}
+
+template <class M>
+void Controller::load_program(const proto::FrameHeader& h, const M& m) {
+  using namespace proto;
+  // busy is the first refusal (SPEC.md §6.3); the tick may end the program, never start one
+  if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+  release();  // the synthesis (up to ~25 000 instructions) runs with the tick free
+  std::uint8_t field = 255;
+  const ErrorCode e = staged_.load(m, params_.control_rate_Hz, field);
+  if (e != ErrorCode::ok) return nak(h, e, field);  // the live program stays as it was
+  hold();
+  const ErrorCode a = programs_.adopt(staged_);
+  if (a != ErrorCode::ok) return nak(h, a, 255, busy_detail());
+  program_rate_Hz_ = params_.control_rate_Hz;
+  ack(h);
+}
+
+std::uint32_t Controller::max_stream_rate_Hz() const {
+  return std::clamp<std::uint32_t>(identity_.max_stream_rate_Hz, 1, Streamer::kMaxRate_Hz);
+}
+
+std::uint16_t Controller::min_stream_decimation(std::uint32_t control_rate_Hz) const {
+  const std::uint32_t max = max_stream_rate_Hz();
+  return static_cast<std::uint16_t>((control_rate_Hz + max - 1) / max);
+}
+
+void Controller::fit_stream_to_max_rate() {
+  const std::uint16_t min = min_stream_decimation(params_.control_rate_Hz);
+  if (streamer_.running() || streamer_.config().decimation >= min) return;
+  proto::StreamConfigure sc;
+  sc.channels = streamer_.config().channels;
+  sc.decimation = min;
+  sc.batch_samples = streamer_.config().batch_samples;
+  proto::StreamConfig ignored;
+  std::uint8_t field = 255;
+  hold();
+  streamer_.configure(sc, params_.control_rate_Hz, ignored, field, max_stream_rate_Hz());
+  pressure_.set_decimation(streamer_.config().decimation);
+  release();
+}
+
+void Controller::set_identity(const DeviceIdentity& identity) {
+  identity_ = identity;
+  fit_stream_to_max_rate();
 }
 
 void Controller::ack(const proto::FrameHeader& request) {
@@ -63,20 +133,24 @@ proto::DeviceInfo Controller::device_info() const {
   d.capabilities = identity_.capabilities;
   d.max_current_A = 4.0f;
   d.control_rate_Hz = params_.control_rate_Hz;
-  d.max_stream_rate_Hz = Streamer::kMaxRate_Hz;
+  d.max_stream_rate_Hz = max_stream_rate_Hz();
   d.heartbeat_timeout_ms = params_.heartbeat_timeout_ms;
   d.max_payload = static_cast<std::uint16_t>(proto::kMaxPayload);
-  d.state = session_ == Session::incompatible ? proto::DeviceState::incompatible
-            : safety_.tripped()      ? proto::DeviceState::faulted
-            : programs_.running()    ? proto::DeviceState::running
-                                     : proto::DeviceState::idle;
+  d.state = device_state();
   return d;
+}
+
+proto::DeviceState Controller::device_state() const {
+  return session_ == Session::incompatible ? proto::DeviceState::incompatible
+         : safety_.tripped()               ? proto::DeviceState::faulted
+         : programs_.running()             ? proto::DeviceState::running
+                                           : proto::DeviceState::idle;
 }
 
 proto::Status Controller::status() const {
   proto::Status s;
   s.device_time_us = device_time_us();
-  s.state = device_info().state;
+  s.state = device_state();
   s.fault = safety_.fault();
   s.program_kind = programs_.kind();
   s.program_state = programs_.state();
@@ -107,7 +181,11 @@ void Controller::apply_calibration(const CalibrationData& c) {
 
 CalibrationStatus Controller::load_calibration_block(const std::uint8_t* data, std::size_t size) {
   const CalibrationLoad l = load_calibration({data, size});
-  if (l.status == CalibrationStatus::ok) apply_calibration(l.data);
+  if (l.status == CalibrationStatus::ok) {
+    hold();
+    apply_calibration(l.data);
+    release();
+  }
   return l.status;
 }
 
@@ -166,41 +244,52 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       if (m.travel_min_counts >= m.travel_max_counts)
         return nak(h, ErrorCode::out_of_range, field_index_of<&SetParams::travel_min_counts>());
       if (programs_.running() || streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+      release();  // only this loop starts a program or the stream: nothing can become busy now
       const Params p = fields_as<Params>(m);
       const std::uint32_t old_rate = params_.control_rate_Hz;
-      // device time runs on across a rate change: anchor it at this tick
-      if (p.control_rate_Hz != old_rate) time_base_ = {tick_, device_time_us()};
-      apply_params(p);
-      if (p.control_rate_Hz != old_rate) {
+      const bool new_rate = p.control_rate_Hz != old_rate;
+      StreamConfig stream;
+      bool restream = false;
+      if (new_rate) {
         // keep the stream's sample rate: scale its decimation with the tick rate
         StreamConfigure sc;
         sc.channels = streamer_.config().channels;
         sc.batch_samples = streamer_.config().batch_samples;
-        sc.decimation = static_cast<std::uint16_t>(
-            static_cast<std::uint32_t>(streamer_.config().decimation) * p.control_rate_Hz / old_rate);
-        StreamConfig ignored;
-        streamer_.configure(sc, p.control_rate_Hz, ignored, field);
-        pressure_.set_decimation(streamer_.config().decimation);
+        sc.decimation = std::max(
+            static_cast<std::uint16_t>(static_cast<std::uint32_t>(streamer_.config().decimation) *
+                                       p.control_rate_Hz / old_rate),
+            min_stream_decimation(p.control_rate_Hz));
+        restream = Streamer::check(sc, p.control_rate_Hz, stream, field, max_stream_rate_Hz()) ==
+                   ErrorCode::ok;
+      }
+      hold();
+      // device time runs on across a rate change: anchor it at this tick
+      if (new_rate) time_base_ = {tick_, device_time_us()};
+      apply_params(p);
+      if (restream) {
+        streamer_.apply(stream, p.control_rate_Hz);
+        pressure_.set_decimation(stream.decimation);
       }
       reply(h, params_);
     } else if constexpr (std::is_same_v<M, GetCalibration>) {
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, SetCalibration>) {
+      release();  // the checks read only the message
       CalibrationData c;
       const int bad = from_proto(fields_as<Calibration>(m), c);
       if (bad >= 0) return nak(h, ErrorCode::calibration_invalid, static_cast<std::uint8_t>(bad));
+      hold();
       apply_calibration(c);
+      release();
       reply(h, to_proto(calibration_));
     } else if constexpr (std::is_same_v<M, CommitCalibration>) {
+      release();  // calibration_, committed_ and commits_ are the main loop's
       committed_ = serialize_calibration(calibration_);
       ++commits_;
       ack(h);
     } else if constexpr (is_one_of<M, LoadHold, LoadRamp, LoadSine, LoadSweep, LoadMultisine,
                                    LoadContactWatch>) {
-      const ErrorCode e = programs_.load(m, params_.control_rate_Hz, field);
-      if (e != ErrorCode::ok) return nak(h, e, field, e == ErrorCode::busy ? busy_detail() : 0);
-      program_rate_Hz_ = params_.control_rate_Hz;
-      ack(h);
+      load_program(h, m);
     } else if constexpr (std::is_same_v<M, ProgramStart>) {
       if (safety_.tripped())
         return nak(h, ErrorCode::faulted, 255, static_cast<std::int32_t>(safety_.fault()));
@@ -230,9 +319,15 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       reply(h, programs_.status(tick_));
     } else if constexpr (std::is_same_v<M, StreamConfigure>) {
       if (streamer_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
+      release();  // the checks and the figures (double arithmetic) read only the message
       StreamConfig c;
-      const ErrorCode e = streamer_.configure(m, params_.control_rate_Hz, c, field);
-      if (e != ErrorCode::ok) return nak(h, e, field);
+      const std::uint32_t max = max_stream_rate_Hz();
+      const ErrorCode e = Streamer::check(m, params_.control_rate_Hz, c, field, max);
+      // stream_too_fast names the limit (SPEC.md §9.1)
+      if (e != ErrorCode::ok)
+        return nak(h, e, field, e == ErrorCode::stream_too_fast ? static_cast<std::int32_t>(max) : 0);
+      hold();
+      streamer_.apply(c, params_.control_rate_Hz);
       pressure_.set_decimation(m.decimation);
       reply(h, c);
     } else if constexpr (std::is_same_v<M, StreamStart>) {

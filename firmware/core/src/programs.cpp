@@ -61,6 +61,32 @@ proto::ErrorCode ProgramRunner::load(const proto::LoadContactWatch& m, std::uint
   return load_as(slot_.contact, proto::ProgramKind::contact_watch, m, rate_Hz, field_index);
 }
 
+proto::ErrorCode ProgramRunner::adopt(const ProgramRunner& staged) {
+  if (running()) return proto::ErrorCode::busy;
+  if (staged.state_ != proto::ProgramState::loaded) return proto::ErrorCode::no_program;
+  // the staged program only (the union member in use), not the whole 1.8 KB slot
+  switch (staged.kind_) {
+    case proto::ProgramKind::hold: ::new (&slot_.hold) HoldProgram(staged.slot_.hold); break;
+    case proto::ProgramKind::ramp: ::new (&slot_.ramp) RampProgram(staged.slot_.ramp); break;
+    case proto::ProgramKind::sine: ::new (&slot_.sine) SineProgram(staged.slot_.sine); break;
+    case proto::ProgramKind::sweep: ::new (&slot_.sweep) SweepProgram(staged.slot_.sweep); break;
+    case proto::ProgramKind::multisine:
+      ::new (&slot_.multisine) MultisineProgram(staged.slot_.multisine);
+      break;
+    case proto::ProgramKind::contact_watch:
+      ::new (&slot_.contact) ContactWatchProgram(staged.slot_.contact);
+      break;
+    default: return proto::ErrorCode::no_program;
+  }
+  // what load_as() sets; everything else is this runner's runtime state and stays
+  kind_ = staged.kind_;
+  state_ = proto::ProgramState::loaded;
+  rate_Hz_ = staged.rate_Hz_;
+  step_ = 0;
+  repetition_ = 0;
+  return proto::ErrorCode::ok;
+}
+
 proto::ErrorCode ProgramRunner::start(std::uint64_t now_ticks, std::int32_t encoder_count) {
   if (state_ == proto::ProgramState::idle) return proto::ErrorCode::no_program;
   if (running()) return proto::ErrorCode::busy;

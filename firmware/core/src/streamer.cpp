@@ -4,7 +4,15 @@ namespace palp::fw {
 
 proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
                                      std::uint32_t control_rate_Hz, proto::StreamConfig& reply,
-                                     std::uint8_t& field_index) {
+                                     std::uint8_t& field_index, std::uint32_t max_rate_Hz) {
+  const proto::ErrorCode e = check(c, control_rate_Hz, reply, field_index, max_rate_Hz);
+  if (e == proto::ErrorCode::ok) apply(reply, control_rate_Hz);
+  return e;
+}
+
+proto::ErrorCode Streamer::check(const proto::StreamConfigure& c, std::uint32_t control_rate_Hz,
+                                 proto::StreamConfig& config, std::uint8_t& field_index,
+                                 std::uint32_t max_rate_Hz) {
   const int bad = c.first_out_of_range();
   if (bad >= 0) {
     field_index = static_cast<std::uint8_t>(bad);
@@ -14,21 +22,25 @@ proto::ErrorCode Streamer::configure(const proto::StreamConfigure& c,
     field_index = proto::field_index_of<&proto::StreamConfigure::batch_samples>();
     return proto::ErrorCode::out_of_range;
   }
-  if (static_cast<std::uint64_t>(control_rate_Hz) > std::uint64_t{kMaxRate_Hz} * c.decimation) {
+  if (max_rate_Hz > kMaxRate_Hz) max_rate_Hz = kMaxRate_Hz;
+  if (static_cast<std::uint64_t>(control_rate_Hz) > std::uint64_t{max_rate_Hz} * c.decimation) {
     field_index = proto::field_index_of<&proto::StreamConfigure::decimation>();
     return proto::ErrorCode::stream_too_fast;
   }
-  control_rate_Hz_ = control_rate_Hz;
-  config_.channels = c.channels;
-  config_.decimation = c.decimation;
-  config_.batch_samples = c.batch_samples;
-  config_.period_ns = static_cast<std::uint32_t>(
+  config.channels = c.channels;
+  config.decimation = c.decimation;
+  config.batch_samples = c.batch_samples;
+  config.period_ns = static_cast<std::uint32_t>(
       static_cast<std::uint64_t>(c.decimation) * 1'000'000'000ull / control_rate_Hz);
-  config_.bytes_per_sample = static_cast<std::uint16_t>(proto::bytes_per_sample(c.channels));
-  config_.wire_bytes_per_s = proto::stream_wire_bytes_per_s(
+  config.bytes_per_sample = static_cast<std::uint16_t>(proto::bytes_per_sample(c.channels));
+  config.wire_bytes_per_s = proto::stream_wire_bytes_per_s(
       c.channels, static_cast<double>(control_rate_Hz) / c.decimation, c.batch_samples);
-  reply = config_;
   return proto::ErrorCode::ok;
+}
+
+void Streamer::apply(const proto::StreamConfig& config, std::uint32_t control_rate_Hz) {
+  control_rate_Hz_ = control_rate_Hz;
+  config_ = config;
 }
 
 void Streamer::start(std::uint64_t tick, TimeBase base) {

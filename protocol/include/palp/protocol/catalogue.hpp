@@ -233,7 +233,7 @@
   F(S, u8, 1, request_id, 0, 0, NOLIM, NOLIM, "", "Message id of the refused request.")     \
   F(E, ErrorCode, 1, error, 0, ErrorCode::ok, NOLIM, NOLIM, "", "Why.")                      \
   F(S, u8, 1, field_index, 0, 255, NOLIM, NOLIM, "", "Zero-based index of the offending field, 255 if none.") \
-  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "For faulted and fault_persists: the latched FaultReason; for busy: the running ProgramKind (none when only the stream runs); for no_program: 1 when the loaded program was timed for another control rate; otherwise 0 (SPEC.md 6.3).")
+  F(S, i32, 1, detail, 0, 0, NOLIM, NOLIM, "", "For faulted and fault_persists: the latched FaultReason; for busy: the running ProgramKind (none when only the stream runs); for no_program: 1 when the loaded program was timed for another control rate; for stream_too_fast: the device's max_stream_rate_Hz; otherwise 0 (SPEC.md 6.3).")
 
 // --- session, time, status -------------------------------------------------------------------
 #define PALP_FIELDS_Ping(F)                                                           \

@@ -3,8 +3,9 @@
 //   boot       the board's identity, the stored calibration (blank or bad: the core's defaults,
 //              never a silent replacement), then the tick at the default control rate;
 //   tick ISR   board.read_inputs -> watchdog clock -> controller.tick -> board.apply_outputs;
-//   main loop  link bytes -> controller.receive (the tick held while a command changes its
-//              state), a rate change -> the tick timer, controller.service every few ticks,
+//   main loop  link bytes -> controller.receive (which holds the tick through the board's
+//              hold_tick/release_tick while a command changes its state), a rate change -> the
+//              tick timer, controller.service every few ticks,
 //              controller.transmit -> link, a calibration commit -> board storage, a bootloader
 //              request -> the board once its Ack is on the wire; nothing to do -> board.idle.
 //
@@ -28,7 +29,7 @@ class App {
   /// run (or at once after received bytes): 8 ticks = 0.4 ms at 20 kHz, 40 samples at most
   /// per batch at the highest sample rate.
   static constexpr std::uint32_t kServiceTicks = 8;
-  /// Bytes moved per step on the link (each way).
+  /// Bytes moved per pass on the link (each way).
   static constexpr std::size_t kChunk = 256;
 
   explicit App(B& board) : board_(board), controller_(board.identity()) {}
@@ -45,6 +46,7 @@ class App {
     const std::size_t n = board_.read_calibration(block, sizeof block);
     if (n > 0) calibration_status_ = controller_.load_calibration_block(block, n);
     commits_seen_ = controller_.commits();
+    controller_.set_tick_guard(fw::TickGuard{&App::hold_entry, &App::release_entry, this});
     rate_Hz_ = controller_.control_rate_Hz();
     board_.start_tick(rate_Hz_, TickHandler{&App::tick_entry, this});
   }
@@ -56,7 +58,6 @@ class App {
     const std::uint32_t ticks = ticks_.load(std::memory_order_relaxed);
     if (received > 0 || ticks - serviced_at_ >= kServiceTicks) {
       serviced_at_ = ticks;
-      report_overruns();
       controller_.service();
     }
     flush();
@@ -65,7 +66,7 @@ class App {
       const fw::CalibrationBlock& b = controller_.committed_block();
       board_.write_calibration(b.data(), b.size());
     }
-    if (controller_.bootloader_requested() && tx_size_ == 0 && controller_.tx_pending() == 0)
+    if (controller_.bootloader_requested() && !tx_waiting())
       board_.enter_bootloader();
     board_.idle(&App::has_work, this);
   }
@@ -87,42 +88,42 @@ class App {
     ticks_.store(ticks_.load(std::memory_order_relaxed) + 1u, std::memory_order_relaxed);
   }
 
-  // Commands act on the tick's state: the tick is held while receive() runs, and a rate change
-  // reprograms the timer in the same held section, so no tick runs at the new rate's dt with
-  // the old period.
+  // Commands act on the tick's state: the core holds the board's tick guard around every
+  // change (TickGuard, set at boot). A new control rate reprograms the timer after the request
+  // (the ticks between run at the new rate's dt with the old period: at most the main loop's
+  // pass, a few ticks).
   void receive(std::size_t n) {
-    board_.hold_tick();
     controller_.receive(rx_, n, board_.now_us());
     const std::uint32_t rate = controller_.control_rate_Hz();
-    if (rate != rate_Hz_ && board_.start_tick(rate, TickHandler{&App::tick_entry, this}))
-      rate_Hz_ = rate;
+    if (rate == rate_Hz_) return;
+    board_.hold_tick();
+    if (board_.start_tick(rate, TickHandler{&App::tick_entry, this})) rate_Hz_ = rate;
     board_.release_tick();
   }
 
-  // Transmit: what the link does not take now stays staged for the next pass.
+  static void hold_entry(void* self) { static_cast<App*>(self)->board_.hold_tick(); }
+  static void release_entry(void* self) { static_cast<App*>(self)->board_.release_tick(); }
+
+  // Transmit at most one chunk per pass, so the main loop comes back to service() between
+  // chunks (writing a chunk can take longer than a tick). What the link does not take stays
+  // staged; link_busy_ says the board's transmit interrupt will wake the loop.
   void flush() {
-    for (;;) {
-      if (tx_sent_ == tx_size_) {
-        tx_sent_ = 0;
-        tx_size_ = controller_.transmit(tx_, sizeof tx_);
-        if (tx_size_ == 0) return;
-      }
-      const std::size_t w = board_.link_write(tx_ + tx_sent_, tx_size_ - tx_sent_);
-      if (w == 0) return;
-      tx_sent_ += w;
-      if (tx_sent_ == tx_size_) tx_size_ = tx_sent_ = 0;
+    if (tx_sent_ == tx_size_) {
+      tx_sent_ = tx_size_ = 0;
+      tx_size_ = controller_.transmit(tx_, sizeof tx_);
+      if (tx_size_ == 0) return;
     }
+    const std::size_t w = board_.link_write(tx_ + tx_sent_, tx_size_ - tx_sent_);
+    tx_sent_ += w;
+    link_busy_ = tx_sent_ < tx_size_;
   }
 
-  void report_overruns() {
-    const std::uint32_t missed = board_.missed_ticks();
-    overruns_reported_ = missed;
-  }
+  bool tx_waiting() const { return tx_sent_ < tx_size_ || controller_.tx_pending() > 0; }
 
   static bool has_work(void* self) {
     const App& a = *static_cast<const App*>(self);
     const std::uint32_t ticks = a.ticks_.load(std::memory_order_relaxed);
-    return ticks - a.serviced_at_ >= kServiceTicks;
+    return ticks - a.serviced_at_ >= kServiceTicks || (!a.link_busy_ && a.tx_waiting());
   }
 
   B& board_;
@@ -132,10 +133,10 @@ class App {
   std::uint32_t rate_Hz_ = 0;
   std::atomic<std::uint32_t> ticks_{0};  // written by the tick, read by the main loop
   std::uint32_t serviced_at_ = 0;
-  std::uint32_t overruns_reported_ = 0;
   std::uint8_t rx_[kChunk] = {};
   std::uint8_t tx_[kChunk] = {};
   std::size_t tx_size_ = 0, tx_sent_ = 0;
+  bool link_busy_ = false;
 };
 
 }  // namespace palp::app

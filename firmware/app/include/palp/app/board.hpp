@@ -53,7 +53,9 @@ concept Board = requires(B& b, const B& cb, fw::TickInputs& in, const fw::TickOu
   /// board cannot make that rate (the tick then keeps its previous rate).
   { b.start_tick(rate_Hz, handler) } -> std::same_as<bool>;
   /// Tick ISR: this tick's raw sensor readings (all of TickInputs except watchdog_now_us,
-  /// which the app takes from now_us()).
+  /// which the app takes from now_us()), and in missed_ticks the ticks that fell due since the
+  /// previous call but never ran (the interrupt was still pending or held when the next one
+  /// came; the core counts them as control overruns).
   { b.read_inputs(in) } -> std::same_as<void>;
   /// Tick ISR: applies the coil voltage (PWM duty = v_coil_V / supply) and the contact line
   /// until the next tick.
@@ -63,9 +65,6 @@ concept Board = requires(B& b, const B& cb, fw::TickInputs& in, const fw::TickOu
   /// release. The core's TickGuard calls them around its short state changes.
   { b.hold_tick() } -> std::same_as<void>;
   { b.release_tick() } -> std::same_as<void>;
-  /// Ticks that fell due but could not run (the interrupt was still pending or held when the
-  /// next one came) since boot: the app reports them as control overruns.
-  { cb.missed_ticks() } -> std::same_as<std::uint32_t>;
 
   // --- clocks --------------------------------------------------------------------------------
   /// Any context: a monotonic microsecond clock independent of the tick (the heartbeat

@@ -4,10 +4,13 @@
 // transmit() gives, and calls service() from its main loop.
 //
 // Contexts: tick() is the control interrupt; receive(), service() and transmit() are the main
-// loop. Samples and events cross from tick() to the main loop through SPSC queues. Commands act
-// on the tick's state directly, so tick() must not run while receive() handles a command: palp-sim
-// and the QEMU images call both from one thread; the STM32 board masks the control interrupt
-// around receive() (a queued command hand-off is left for the board issue).
+// loop. Samples and events cross from tick() to the main loop through SPSC queues. A command acts
+// on the tick's state between two ticks: receive() holds the board's TickGuard (which masks the
+// control interrupt) from the moment a decoded request is handled until its reply is built, and
+// only then encodes the reply with the tick free. A Load* request's program is synthesised into a
+// spare runner with the tick free (a 400-line multisine: ~25 000 instructions, 3-4 ticks) and
+// adopted by the live runner in a short held section. Decoding, the reply's encoding and
+// service()/transmit() never hold the guard. palp-sim sets no guard (one thread calls both).
 //
 // Time: device time is the tick count over the control rate (exact), anchored at the last rate
 // change (SetParams.control_rate_Hz) so it runs on continuously across it; the host heartbeat
@@ -43,6 +46,22 @@ struct DeviceIdentity {
   std::uint8_t fw_major = 0, fw_minor = 1, fw_patch = 0;
   std::uint32_t capabilities = 0;
   proto::ProtocolVersion protocol = proto::kThisProtocol;
+  /// The highest stream sample rate this board carries (its link's bandwidth), advertised in
+  /// DeviceInfo.max_stream_rate_Hz; a faster StreamConfigure is refused stream_too_fast. The
+  /// core produces at most Streamer::kMaxRate_Hz: a board may lower the limit, not raise it
+  /// (values outside 1 ... kMaxRate_Hz count as the nearest end).
+  std::uint32_t max_stream_rate_Hz = Streamer::kMaxRate_Hz;
+};
+
+/// How a board keeps tick() from running while a command mutates its state: hold() masks the
+/// control interrupt, release() unmasks it (a tick that fell due meanwhile runs then, late by at
+/// most the held section: the longest is measured in firmware/core/README.md). Default: none
+/// (palp-sim: one thread). The controller never nests hold() and always pairs it with release()
+/// before receive() returns.
+struct TickGuard {
+  void (*hold)(void* ctx) = nullptr;
+  void (*release)(void* ctx) = nullptr;
+  void* ctx = nullptr;
 };
 
 /// One control tick's raw inputs.
@@ -53,6 +72,10 @@ struct TickInputs {
   std::uint64_t watchdog_now_us = 0;      ///< the watchdog's own clock
   float supply_V = kDefaultSupply_V;      ///< measured H-bridge supply (sensor_monitor.hpp)
   bool driver_fault = false;              ///< the H-bridge driver's fault line, asserted
+  /// Control ticks that fell due since the previous tick() but never ran (the board's timer
+  /// interrupt was still pending when the next expiry came): counted in
+  /// Health.control_overruns. The tick index and device time count only ticks that ran.
+  std::uint32_t missed_ticks = 0;
 };
 
 /// What the board applies until the next tick.
@@ -103,8 +126,15 @@ class Controller {
   const CalibrationBlock& committed_block() const { return committed_; }
   std::uint32_t commits() const { return commits_; }
   bool bootloader_requested() const { return bootloader_requested_; }
-  void set_identity(const DeviceIdentity& identity) { identity_ = identity; }
+  /// A new identity; a lower max_stream_rate_Hz also slows a configured stream that would exceed
+  /// it (to the fastest rate allowed) unless it runs.
+  void set_identity(const DeviceIdentity& identity);
   const DeviceIdentity& identity() const { return identity_; }
+  /// The stream rate limit in force (DeviceIdentity::max_stream_rate_Hz within 1 ... 10 kHz).
+  std::uint32_t max_stream_rate_Hz() const;
+  /// The guard receive() holds around every change of the tick's state (see TickGuard). Set it
+  /// before the control interrupt starts.
+  void set_tick_guard(const TickGuard& guard) { guard_ = guard; }
   /// Ends the host's session: until its next compatible Hello only the frozen requests are
   /// served (SPEC.md §6.2). A board calls it when a connection ends or a new one begins
   /// (palp-sim: every new client); on USB the host re-Hellos instead.
@@ -129,14 +159,30 @@ class Controller {
     std::uint32_t sample_index = 0;
   };
 
+  /// A decoded request: dispatch() inside the tick guard, released at the latest on return.
+  template <class M>
+  void handle(const proto::FrameHeader& h, const M& m, std::uint64_t watchdog_now_us);
   template <class M>
   void dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t watchdog_now_us);
+  /// Load*: the busy check held, the synthesis into staged_ released, the adoption held.
+  template <class M>
+  void load_program(const proto::FrameHeader& h, const M& m);
+  /// The tick guard: hold() then release(); each a no-op when already in that state.
+  void hold();
+  void release();
+  /// The fewest ticks per sample that keep the stream within max_stream_rate_Hz().
+  std::uint16_t min_stream_decimation(std::uint32_t control_rate_Hz) const;
+  /// Reconfigures a stream that is not running if it is faster than max_stream_rate_Hz().
+  void fit_stream_to_max_rate();
   /// Encodes m into the transmit buffer; false when it does not fit (counted as a dropped frame
   /// unless count_drop is false, for senders that keep the message and retry).
   template <class M>
   bool send(const M& m, std::uint16_t seq, std::uint8_t flags, bool count_drop = true);
+  /// A request's answer. It ends the held section (the encoding runs with the tick free), so a
+  /// handler makes every change to the tick's state before it replies.
   template <class M>
   bool reply(const proto::FrameHeader& request, const M& m) {
+    release();
     return send(m, request.seq, proto::kFlagResponse);
   }
   void ack(const proto::FrameHeader& request);
@@ -147,6 +193,7 @@ class Controller {
   void apply_params(const proto::Params& p);
   void apply_calibration(const CalibrationData& c);
   proto::DeviceInfo device_info() const;
+  proto::DeviceState device_state() const;
   proto::Status status() const;
   std::uint16_t status_bits() const;
   void push_event(const TickEvent& e);
@@ -166,6 +213,7 @@ class Controller {
   Safety safety_;
   SensorMonitor monitor_;
   ProgramRunner programs_;
+  ProgramRunner staged_;  // main loop only: a Load* is synthesised here, then adopted (programs.hpp)
   Streamer streamer_;
 
   std::uint64_t tick_ = 0;   // ticks done
@@ -184,12 +232,18 @@ class Controller {
   std::uint32_t program_rate_Hz_ = 0;  // control rate the loaded program was timed for
   bool bootloader_requested_ = false;
   std::uint16_t device_seq_ = 0;
+  TickGuard guard_{};
+  bool held_ = false;
 
   SpscQueue<IndexedSample, kSampleQueue> samples_;
   SpscQueue<TickEvent, kEventQueue> events_;
   Ring<std::uint8_t, kTxBytes> tx_;
   proto::FrameReader reader_;
   ControllerCounters counters_{};
+
+  /// Tests only (tests/fw_core/test_tick_guard.cpp): reads the tick's state to prove that
+  /// receive() changes it only inside the guard.
+  friend struct TickStateProbe;
 };
 
 template <class M>

@@ -28,14 +28,14 @@
 // switch; no virtual functions, no heap. sizeof(ProgramRunner) is about 1.8 KB, nearly all of
 // it the multisine's 400 line phases.
 //
-// Context: not thread-safe. start/stop/abort_fault/step belong to the control tick's context
-// (or to code that runs with the tick masked). load() is load-time work; measured on the QEMU
-// Cortex-M4 (-O2): a 400-line multisine ~21000 instructions (random phases) or ~25000
-// (Schroeder), mostly priming two sub-rate points (800 line evaluations): 3-4 ticks at 20 kHz if
-// the tick is masked meanwhile; the default 90-line multisine ~7400; a ramp ~2100, a sweep
-// ~2800 (soft double arithmetic), a sine ~1000, a hold or contact watch < 100. start() < 150.
-// The runner is trivially copyable, so a controller can load a spare runner with the tick
-// running and copy it over the live one (1.8 KB) in a short masked section.
+// Context: not thread-safe. start/stop/abort_fault/step/adopt belong to the control tick's
+// context (or to code that runs with the tick masked). load() is load-time work; measured on the
+// QEMU Cortex-M4 (-O2): a 400-line multisine ~21000 instructions (random phases) or ~25000
+// (Schroeder), mostly priming two sub-rate points (800 line evaluations): 3-4 ticks at 20 kHz;
+// the default 90-line multisine ~7400; a ramp ~2100, a sweep ~2800 (soft double arithmetic), a
+// sine ~1000, a hold or contact watch < 100. start() < 150. So the controller never loads the
+// live runner: it loads a spare one with the tick running and adopt()s it in a short masked
+// section (a copy of the program only, at most ~1.7 KB).
 #pragma once
 
 #include <cstdint>
@@ -81,6 +81,13 @@ class ProgramRunner {
                         std::uint8_t& field_index);
   proto::ErrorCode load(const proto::LoadContactWatch& m, std::uint32_t control_rate_Hz,
                         std::uint8_t& field_index);
+
+  /// Takes over the program `staged` holds (loaded there by load(), outside the tick): this
+  /// runner ends up exactly as if it had loaded the same message itself. The runtime state stays:
+  /// a contact hold's rest current, contact_latched, the last run's end and times. busy while a
+  /// program runs here, no_program when `staged` has nothing loaded (this runner unchanged).
+  /// Costs a copy of the staged program: at most ~1.7 KB (a 400-line multisine).
+  proto::ErrorCode adopt(const ProgramRunner& staged);
 
   /// ProgramStart at tick now_ticks with the encoder count of that tick (the ramp's
   /// displacement reference and the contact watch's armed_count). no_program when nothing is

@@ -52,9 +52,18 @@ class Streamer {
   static constexpr std::uint32_t kMaxRate_Hz = 10000;
 
   /// Validates and applies a configuration for a control rate; fills the reply. On refusal
-  /// returns the error and the offending field index (Nak.field_index).
+  /// returns the error and the offending field index (Nak.field_index). A sample rate above
+  /// max_rate_Hz (the board's limit, at most kMaxRate_Hz) is stream_too_fast.
   proto::ErrorCode configure(const proto::StreamConfigure& c, std::uint32_t control_rate_Hz,
-                             proto::StreamConfig& reply, std::uint8_t& field_index);
+                             proto::StreamConfig& reply, std::uint8_t& field_index,
+                             std::uint32_t max_rate_Hz = kMaxRate_Hz);
+  /// configure() in two steps: check() validates and computes the configuration touching no
+  /// state (the controller runs it with the tick free: it has double arithmetic), apply() puts a
+  /// configuration check() accepted for that control rate in force.
+  static proto::ErrorCode check(const proto::StreamConfigure& c, std::uint32_t control_rate_Hz,
+                                proto::StreamConfig& config, std::uint8_t& field_index,
+                                std::uint32_t max_rate_Hz = kMaxRate_Hz);
+  void apply(const proto::StreamConfig& config, std::uint32_t control_rate_Hz);
   const proto::StreamConfig& config() const { return config_; }
 
   /// Starts at control tick `tick` (device time from `base`): the next sample is index 0.

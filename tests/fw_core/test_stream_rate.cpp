@@ -1,0 +1,100 @@
+// The board's stream rate limit (DeviceIdentity::max_stream_rate_Hz, SPEC.md §9.1): advertised
+// in DeviceInfo, enforced by StreamConfigure (stream_too_fast naming decimation, the limit in
+// Nak.detail), and kept by the default stream and across control-rate changes.
+#include <gtest/gtest.h>
+
+#include "controller_bench.hpp"
+
+namespace palp::fw {
+namespace {
+
+using namespace palp::proto;
+using test::Bench;
+
+DeviceIdentity board_limited_to(std::uint32_t max_stream_rate_Hz) {
+  DeviceIdentity id = Bench::identity();
+  id.max_stream_rate_Hz = max_stream_rate_Hz;
+  return id;
+}
+
+/// The period of the stream's samples, from the first batch of a short run.
+std::uint32_t streamed_period_ns(Bench& b) {
+  b.clear();
+  b.send(StreamStart{}, 50);
+  b.run_ticks(4000);
+  b.send(StreamStop{}, 51);
+  b.run_ticks(1);
+  const auto batches = b.all<SampleBatch>();
+  EXPECT_FALSE(batches.empty());
+  return batches.empty() ? 0 : batches.front().period_ns;
+}
+
+TEST(StreamRate, DeviceInfoAdvertisesTheBoardsLimit) {
+  Bench b(Bench::Start::with_session, board_limited_to(2000));
+  b.send(GetDeviceInfo{}, 1);
+  b.pump();
+  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 2000u);
+  EXPECT_EQ(b.c_.max_stream_rate_Hz(), 2000u);
+}
+
+TEST(StreamRate, AStreamConfigureAboveTheLimitIsStreamTooFastNamingDecimationWithTheLimitInDetail) {
+  Bench b(Bench::Start::with_session, board_limited_to(2000));
+  b.send(StreamConfigure{kAllChannels, 9, 40}, 1);  // 20 kHz / 9 = 2222 Hz
+  b.pump();
+  ASSERT_EQ(b.got_.size(), 1u);
+  EXPECT_EQ(b.last_frame().name, "Nak");
+  // request_id 0x30 StreamConfigure, error 10 stream_too_fast (u16 LE), field_index 1, detail 2000
+  // (i32 LE)
+  EXPECT_EQ(b.last_frame().payload, (std::vector<u8>{0x30, 0x0a, 0x00, 0x01, 0xd0, 0x07, 0x00, 0x00}));
+  b.clear();
+  b.send(StreamConfigure{kAllChannels, 10, 40}, 2);  // exactly 2000 Hz
+  b.pump();
+  EXPECT_EQ(b.last<StreamConfig>().period_ns, 500000u);
+}
+
+TEST(StreamRate, TheDefaultStreamOfASlowBoardRunsAtItsLimitAndNotAtTenKilohertz) {
+  Bench b(Bench::Start::with_session, board_limited_to(3000));
+  EXPECT_EQ(streamed_period_ns(b), 7u * 50000u);  // decimation 7: 2857 Hz, the fastest <= 3000 Hz
+  Bench fast;  // the default limit keeps the catalogue's default stream: 10 kHz
+  EXPECT_EQ(streamed_period_ns(fast), 2u * 50000u);
+}
+
+// 40 kHz / 13 = 3077 Hz fits a 3077 Hz limit; at 20 kHz half the decimation, 6, would be 3333 Hz
+TEST(StreamRate, AControlRateChangeRoundsTheDecimationUpToStayWithinTheLimit) {
+  Bench b(Bench::Start::with_session, board_limited_to(3077));
+  SetParams p;
+  p.control_rate_Hz = 40000;
+  b.send(p, 1);
+  b.send(StreamConfigure{kAllChannels, 13, 40}, 2);
+  b.pump();
+  ASSERT_EQ(b.last<StreamConfig>().decimation, 13u);
+  p.control_rate_Hz = 20000;
+  b.send(p, 3);
+  b.pump();
+  ASSERT_EQ(b.last<Params>().control_rate_Hz, 20000u);
+  EXPECT_EQ(streamed_period_ns(b), 7u * 50000u);
+}
+
+TEST(StreamRate, ABoardCannotRaiseTheLimitAboveTenKilohertz) {
+  Bench b(Bench::Start::with_session, board_limited_to(50000));
+  b.send(GetDeviceInfo{}, 1);
+  b.send(StreamConfigure{kAllChannels, 1, 40}, 2);  // 20 kHz
+  b.pump();
+  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 10000u);
+  const Nak n = b.last<Nak>();
+  EXPECT_EQ(n.error, ErrorCode::stream_too_fast);
+  EXPECT_EQ(n.field_index, 1);
+  EXPECT_EQ(n.detail, 10000);
+}
+
+TEST(StreamRate, ALowerLimitSetLaterSlowsTheConfiguredStream) {
+  Bench b;
+  b.c_.set_identity(board_limited_to(1000));
+  b.send(GetDeviceInfo{}, 1);
+  b.pump();
+  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 1000u);
+  EXPECT_EQ(streamed_period_ns(b), 20u * 50000u);
+}
+
+}  // namespace
+}  // namespace palp::fw
