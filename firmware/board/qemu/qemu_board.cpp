@@ -103,7 +103,8 @@ bool QemuBoard::start_tick(std::uint32_t rate_Hz, app::TickHandler handler) {
   tick_period_clocks_ = timer::kClock_Hz / rate_Hz;
   dt_s_ = 1.0f / static_cast<float>(rate_Hz);
   const std::uint32_t reload = timer::reload_for_period(tick_period_clocks_);
-  tick_served_ = false;  // the first tick at this rate is due alone
+  tick_grid_clocks_ = now_clocks() + reload - tick_period_clocks_ / 4;
+  ticks_counted_ = 0;
   backlog_ = 0;
   max_backlog_ = static_cast<std::uint64_t>(kMaxBacklog_s * static_cast<float>(rate_Hz));
   timer::reg(kTick, timer::kReload) = reload;
@@ -114,18 +115,16 @@ bool QemuBoard::start_tick(std::uint32_t rate_Hz, app::TickHandler handler) {
 
 void QemuBoard::on_tick_irq() {
   timer::reg(kTick, timer::kIntStatus) = timer::kIntStatusIrq;
-  // When did the timer last expire? VALUE counts down from RELOAD after the expiry (at which it
-  // read 0), so the expiry was (period - VALUE) mod period clocks ago (cmsdk_timer.hpp [QT]).
-  // Each period since the expiry the previous interrupt served is one tick due: more than one
-  // means the interrupt was still pending (or held) when a later expiry came.
-  const std::uint32_t value = timer::reg(kTick, timer::kValue);
-  const std::uint64_t expiry =
-      now_clocks() - (tick_period_clocks_ - value) % tick_period_clocks_;
-  std::uint64_t due = 1;
-  if (tick_served_)
-    due = (expiry - last_expiry_clocks_ + tick_period_clocks_ / 2) / tick_period_clocks_;
-  last_expiry_clocks_ = expiry;
-  tick_served_ = true;
+  // How many ticks have fallen due since the start? Timer 0 expires on a fixed grid of the clock
+  // (both timers count QEMU's one virtual clock; [QT]: the first expiry RELOAD clocks after the
+  // start, then one every period), so the count is the clock's, whatever interrupts coalesced
+  // meanwhile. The grid is kept a quarter period early, so an interrupt served on time is never
+  // counted short by the few clocks the start's register writes took.
+  const std::uint64_t now = now_clocks();
+  const std::uint64_t due_total =
+      now < tick_grid_clocks_ ? 0 : (now - tick_grid_clocks_) / tick_period_clocks_ + 1;
+  const std::uint64_t due = due_total - ticks_counted_;
+  ticks_counted_ = due_total;
   // Catch up: the due ticks run back to back, at most kCatchUpPerIrq per interrupt (the main
   // loop runs between them); a backlog beyond kMaxBacklog_s is dropped and reported.
   backlog_ += due;

@@ -8,11 +8,12 @@
 //   tick         CMSDK timer 0, periodic at the control rate (25 MHz / rate clocks), its
 //                interrupt masked alone by hold_tick(). Without -icount QEMU runs the timer on
 //                host time and the CPU when the host schedules it: a timer interrupt still
-//                pending when the next expiry comes would lose a tick. The tick handler finds
-//                each expiry from the clock and the timer's count, and runs the ticks that fell
-//                due back to back (catch-up, at most kCatchUpPerIrq per interrupt), so device
-//                time keeps up with host time; a backlog beyond kMaxBacklog_s is dropped and
-//                reported in TickInputs::missed_ticks (the core counts control overruns).
+//                pending when the next expiry comes would lose a tick. The tick handler counts
+//                the ticks due from the clock (the timer expires on a fixed grid of it) and runs
+//                those not run yet back to back (catch-up, at most kCatchUpPerIrq per
+//                interrupt), so device time keeps up with host time; a backlog beyond
+//                kMaxBacklog_s is dropped and reported in TickInputs::missed_ticks (the core
+//                counts them as control overruns).
 //   clock        CMSDK timer 1 free-running over its whole 32-bit range at 25 MHz, extended to
 //                64 bits in software (read at least every tick, far within its 171.8 s wrap).
 //   sensors      a plant on the target (FloatPlant): sensors() before the core's tick, step()
@@ -45,7 +46,7 @@ class QemuBoard {
   /// Received bytes buffered between the UART interrupt and the main loop.
   static constexpr std::size_t kRxRing = 1024;
   /// Catch-up: late ticks run per tick interrupt at most, and the longest backlog kept.
-  static constexpr std::uint32_t kCatchUpPerIrq = 32;
+  static constexpr std::uint32_t kCatchUpPerIrq = 4;
   static constexpr float kMaxBacklog_s = 0.1f;
 
   /// Sets up the UART, the clock and the NVIC; the tick starts with start_tick().
@@ -82,8 +83,8 @@ class QemuBoard {
 
   app::TickHandler tick_{};
   std::uint32_t tick_period_clocks_ = 0;
-  std::uint64_t last_expiry_clocks_ = 0;  // the timer expiry the last tick served
-  bool tick_served_ = false;              // one was served at the current rate
+  std::uint64_t tick_grid_clocks_ = 0;  // the first expiry at this rate, a quarter period early
+  std::uint64_t ticks_counted_ = 0;     // ticks due on the grid so far (run, backlog or dropped)
   bool tick_held_ = false;                // between hold_tick() and release_tick()
   std::uint64_t backlog_ = 0;       // ticks due and not run yet
   std::uint64_t max_backlog_ = 0;   // kMaxBacklog_s in ticks at the current rate
