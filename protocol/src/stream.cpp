@@ -8,9 +8,7 @@ namespace {
 constexpr bool has(u16 mask, Channel c) { return (mask & (1u << static_cast<u8>(c))) != 0; }
 }  // namespace
 
-void pack_sample(Writer& w, const RawSample& s, u16 mask) {
-  u8* p = w.claim(bytes_per_sample(mask));  // one bounds check for the whole sample
-  if (p == nullptr) return;
+u8* detail::pack_channels(u8* p, const RawSample& s, u16 mask) {
   auto put = [&p](auto value) {
     using U = std::make_unsigned_t<decltype(value)>;
     const auto bits = static_cast<U>(value);
@@ -23,6 +21,12 @@ void pack_sample(Writer& w, const RawSample& s, u16 mask) {
     if (has(mask, static_cast<Channel>(static_cast<u8>(Channel::p1) + k))) put(s.pressure[k]);
   if (has(mask, Channel::status)) put(s.status);
   if (has(mask, Channel::v_cmd)) put(s.v_cmd);
+  return p;
+}
+
+void pack_sample(Writer& w, const RawSample& s, u16 mask) {
+  u8* p = w.claim(bytes_per_sample(mask));  // one bounds check for the whole sample
+  if (p != nullptr) pack_sample_at(p, s, mask);
 }
 
 bool unpack_sample(Reader& r, RawSample& s, u16 mask) {

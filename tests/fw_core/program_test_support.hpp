@@ -44,6 +44,17 @@ inline proto::LoadRamp paper_2d_ramp() {
   return m;
 }
 
+// 400 lines of 5 mA, 0.25 ... 100 Hz: the costliest multisine to load and to run
+inline proto::LoadMultisine four_hundred_line_multisine() {
+  proto::LoadMultisine m;
+  m.fundamental_Hz = 0.25f;
+  m.line_first = 1;
+  m.line_last = 400;
+  m.line_step = 1;
+  m.line_amplitude_A = 0.005f;
+  return m;
+}
+
 inline proto::LoadSine sine_5Hz(std::uint32_t cycles) {
   proto::LoadSine m;
   m.offset_A = 1.0f;

@@ -81,44 +81,60 @@ TEST(ProgramRunner, RefusedLoadKeepsThePreviousProgram) {
   EXPECT_EQ(r.state(), ProgramState::loaded);
 }
 
-TEST(ProgramRunner, AdoptingAStagedProgramRunsTickForTickAsLoadingItHere) {
+TEST(ProgramRunner, AStagedAndAdoptedProgramRunsTickForTickAsALoadedOne) {
   proto::LoadMultisine m;  // the default 90 lines
-  const ProgramRunner direct = loaded(m);
-  ProgramRunner live = loaded(sine_5Hz(1));
-  const ProgramRunner staged = loaded(m);
-  ASSERT_EQ(live.adopt(staged), ErrorCode::ok);
-  EXPECT_EQ(live.kind(), proto::ProgramKind::multisine);
-  EXPECT_EQ(live.state(), ProgramState::loaded);
-  ProgramRunner a = direct;
-  ASSERT_EQ(a.start(kT0, 0), ErrorCode::ok);
-  ASSERT_EQ(live.start(kT0, 0), ErrorCode::ok);
+  ProgramRunner direct = loaded(m);
+  ProgramRunner r = loaded(sine_5Hz(1));
+  std::uint8_t field = 0;
+  ASSERT_EQ(r.stage(m, kRate, field), ErrorCode::ok);
+  EXPECT_EQ(r.kind(), proto::ProgramKind::sine);  // staged, not yet loaded
+  EXPECT_EQ(r.staged_kind(), proto::ProgramKind::multisine);
+  ASSERT_EQ(r.adopt_staged(), ErrorCode::ok);
+  EXPECT_EQ(r.kind(), proto::ProgramKind::multisine);
+  EXPECT_EQ(r.state(), ProgramState::loaded);
+  EXPECT_EQ(r.staged_kind(), proto::ProgramKind::none);
+  EXPECT_EQ(r.adopt_staged(), ErrorCode::no_program);  // nothing staged twice
+  ASSERT_EQ(direct.start(kT0, 0), ErrorCode::ok);
+  ASSERT_EQ(r.start(kT0, 0), ErrorCode::ok);
   for (std::uint64_t k = 0; k < 20000; ++k)
-    ASSERT_EQ(live.step(kT0 + k, 0).current_A, a.step(kT0 + k, 0).current_A) << k;
+    ASSERT_EQ(r.step(kT0 + k, 0).current_A, direct.step(kT0 + k, 0).current_A) << k;
 }
 
-TEST(ProgramRunner, AdoptKeepsAContactHoldAndItsLatchAndIsRefusedWhileRunning) {
+TEST(ProgramRunner, StagingWhileAProgramRunsLeavesItRunningAndTheAdoptionWaitsForItsEnd) {
+  ProgramRunner reference = loaded(sine_5Hz(1));  // 4000 ticks
+  ProgramRunner r = loaded(sine_5Hz(1));
+  reference.start(kT0, 0);
+  r.start(kT0, 0);
+  for (std::uint64_t k = 0; k < 100; ++k)
+    ASSERT_EQ(r.step(kT0 + k, 0).current_A, reference.step(kT0 + k, 0).current_A) << k;
+  std::uint8_t field = 0;
+  ASSERT_EQ(r.stage(four_hundred_line_multisine(), kRate, field), ErrorCode::ok);
+  EXPECT_EQ(r.adopt_staged(), ErrorCode::busy);
+  for (std::uint64_t k = 100; k <= 4000; ++k)
+    ASSERT_EQ(r.step(kT0 + k, 0).current_A, reference.step(kT0 + k, 0).current_A) << k;
+  ASSERT_EQ(r.state(), ProgramState::finished);
+  EXPECT_EQ(r.adopt_staged(), ErrorCode::ok);
+  EXPECT_EQ(r.kind(), proto::ProgramKind::multisine);
+}
+
+TEST(ProgramRunner, AdoptionKeepsAContactHoldAndItsLatchUntilTheNextStart) {
   proto::LoadContactWatch watch;  // 0.5 A, 200 counts
-  ProgramRunner live = loaded(watch);
-  live.start(kT0, 0);
-  live.step(kT0, 200);  // contact at once
-  ASSERT_TRUE(live.contact_latched());
+  ProgramRunner r = loaded(watch);
+  r.start(kT0, 0);
+  r.step(kT0, 200);  // contact at once
+  ASSERT_TRUE(r.contact_latched());
   proto::LoadHold hold;
   hold.current_A = 0.3f;
-  ProgramRunner staged = loaded(hold);
-  ASSERT_EQ(live.adopt(staged), ErrorCode::ok);
-  EXPECT_TRUE(live.contact_latched());
-  EXPECT_EQ(live.rest_current_A(), 0.5f);
-  EXPECT_EQ(live.end(), ProgramEnd::contact);
-  EXPECT_EQ(live.step(kT0 + 1, 200).current_A, 0.5f);
-  ASSERT_EQ(live.start(kT0 + 2, 200), ErrorCode::ok);
-  EXPECT_FALSE(live.contact_latched());
-  EXPECT_EQ(live.step(kT0 + 2, 200).current_A, 0.3f);
-  EXPECT_EQ(live.adopt(loaded(sine_5Hz(1))), ErrorCode::busy);
-  EXPECT_EQ(live.kind(), proto::ProgramKind::hold);
-  ProgramRunner idle;
-  live.stop(kT0 + 3);
-  EXPECT_EQ(live.adopt(idle), ErrorCode::no_program);
-  EXPECT_EQ(live.kind(), proto::ProgramKind::hold);
+  std::uint8_t field = 0;
+  ASSERT_EQ(r.stage(hold, kRate, field), ErrorCode::ok);
+  ASSERT_EQ(r.adopt_staged(), ErrorCode::ok);
+  EXPECT_TRUE(r.contact_latched());
+  EXPECT_EQ(r.rest_current_A(), 0.5f);
+  EXPECT_EQ(r.end(), ProgramEnd::contact);
+  EXPECT_EQ(r.step(kT0 + 1, 200).current_A, 0.5f);
+  ASSERT_EQ(r.start(kT0 + 2, 200), ErrorCode::ok);
+  EXPECT_FALSE(r.contact_latched());
+  EXPECT_EQ(r.step(kT0 + 2, 200).current_A, 0.3f);
 }
 
 // ---- validation -------------------------------------------------------------------------------

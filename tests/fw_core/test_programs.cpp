@@ -361,13 +361,7 @@ TEST(ProgramMultisine, OutputIsOffsetPlusAmplitudeTimesTheUnitSum) {
 }
 
 TEST(ProgramMultisine, FourHundredLinesCostFiftyLineEvaluationsInEveryTick) {
-  proto::LoadMultisine m;
-  m.fundamental_Hz = 0.25f;
-  m.line_first = 1;
-  m.line_last = 400;
-  m.line_step = 1;
-  m.line_amplitude_A = 0.005f;
-  ProgramRunner r = loaded(m);
+  ProgramRunner r = loaded(four_hundred_line_multisine());
   r.start(kT0, 0);
   for (std::uint64_t k = 0; k < 100000; ++k) {
     r.step(kT0 + k, 0);

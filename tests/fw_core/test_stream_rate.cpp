@@ -75,6 +75,20 @@ TEST(StreamRate, AControlRateChangeRoundsTheDecimationUpToStayWithinTheLimit) {
   EXPECT_EQ(streamed_period_ns(b), 7u * 50000u);
 }
 
+// 20 kHz / 40000 = 0.5 Hz; at 40 kHz that would take decimation 80000: the u16 holds 65535
+TEST(StreamRate, AVerySlowStreamStaysAtTheSlowestDecimationAcrossARateChangeRatherThanWrapping) {
+  Bench b;
+  b.send(StreamConfigure{kAllChannels, 40000, 1}, 1);
+  SetParams p;
+  p.control_rate_Hz = 40000;
+  b.send(p, 2);
+  b.send(StreamStart{}, 3);
+  b.run_ticks(10);  // the first sample, at the start tick, is a whole batch
+  const auto batches = b.all<SampleBatch>();
+  ASSERT_FALSE(batches.empty());
+  EXPECT_EQ(batches.front().period_ns, 65535u * 25000u);  // not 14464 ticks (80000 mod 65536)
+}
+
 TEST(StreamRate, ABoardCannotRaiseTheLimitAboveTenKilohertz) {
   Bench b(Bench::Start::with_session, board_limited_to(50000));
   b.send(GetDeviceInfo{}, 1);

@@ -38,21 +38,26 @@ TEST(Crc32, IncrementalEqualsOneShot) {
   EXPECT_EQ(crc32_final(s), crc32(data.data(), data.size()));
 }
 
-// The host's slicing-by-8 and the firmware's byte-wise table give the same CRC for every length
-// (the whole words and the byte tail) and every start state.
-TEST(Crc32, SlicingByEightEqualsTheBytewiseTableForEveryLength) {
+// Slicing-by-4 (the firmware's) and slicing-by-8 (the hosts') give the byte-wise table's CRC for
+// every length (the whole words and the byte tail) and every start state.
+TEST(Crc32, SlicingByFourAndByEightEqualTheBytewiseTableForEveryLength) {
   std::mt19937 rng(5);
   std::vector<u8> data(300);
   for (u8& b : data) b = static_cast<u8>(rng());
   for (std::size_t n = 0; n <= data.size(); ++n) {
     for (const u32 start : {kCrc32Init, 0u, 0x12345678u}) {
-      ASSERT_EQ(crc32_update_sliced(start, data.data(), n),
-                crc32_update_bytewise(start, data.data(), n))
-          << "length " << n;
+      const u32 bytewise = crc32_update_bytewise(start, data.data(), n);
+      ASSERT_EQ(crc32_update_sliced<4>(start, data.data(), n), bytewise) << "length " << n;
+      ASSERT_EQ(crc32_update_sliced<8>(start, data.data(), n), bytewise) << "length " << n;
     }
   }
+  // unaligned starts: the word loads must not assume alignment
+  for (std::size_t off = 1; off < 4; ++off)
+    ASSERT_EQ(crc32_update_sliced<4>(kCrc32Init, data.data() + off, 100),
+              crc32_update_bytewise(kCrc32Init, data.data() + off, 100));
   constexpr u8 kCheck[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  static_assert(crc32_final(crc32_update_sliced(kCrc32Init, kCheck, 9)) == 0xCBF43926u);
+  static_assert(crc32_final(crc32_update_sliced<4>(kCrc32Init, kCheck, 9)) == 0xCBF43926u);
+  static_assert(crc32_final(crc32_update_sliced<8>(kCrc32Init, kCheck, 9)) == 0xCBF43926u);
 }
 
 // The examples of Cheshire & Baker's COBS paper as listed by common references.
@@ -71,6 +76,15 @@ TEST(Cobs, A254ByteRunEndsWithoutAnExtraCodeByte) {
   const std::vector<u8> run = bytes_1_to(254);
   expected.insert(expected.end(), run.begin(), run.end());
   EXPECT_EQ(encode(run), expected);
+}
+
+TEST(Cobs, A254ByteRunThenAZeroClosesTheFullBlockAndCodesTheZero) {
+  std::vector<u8> in = bytes_1_to(254);
+  in.push_back(0x00);
+  std::vector<u8> expected = {0xFF};
+  expected.insert(expected.end(), in.begin(), in.end() - 1);
+  expected.insert(expected.end(), {0x01, 0x01});  // an empty block before and after the zero
+  EXPECT_EQ(encode(in), expected);
 }
 
 TEST(Cobs, A255ByteRunSplitsIntoTwoBlocks) {
@@ -96,6 +110,43 @@ TEST(Cobs, RoundTripsRandomDataOfEveryLengthUpTo600WithoutZeros) {
     ASSERT_EQ(n, static_cast<int>(len));
     dec.resize(len);
     ASSERT_EQ(dec, in) << "length " << len;
+  }
+}
+
+// The textbook encoder (a byte a step, a code byte back-patched at every zero and every 254-byte
+// run), to hold the firmware's chunked one against.
+std::vector<u8> textbook_encode(const std::vector<u8>& in) {
+  std::vector<u8> out(1);
+  std::size_t code = 0;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    if (in[k] == 0) {
+      out[code] = static_cast<u8>(out.size() - code);
+      code = out.size();
+      out.push_back(0);
+      continue;
+    }
+    out.push_back(in[k]);
+    if (out.size() - code == 0xFF) {
+      out[code] = 0xFF;
+      if (k + 1 == in.size()) return out;
+      code = out.size();
+      out.push_back(0);
+    }
+  }
+  out[code] = static_cast<u8>(out.size() - code);
+  return out;
+}
+
+// Zeros from every other byte to one in 500 (runs past 254 bytes, blocks filling up inside and
+// across the encoder's chunks), every length up to 1100 (a whole frame).
+TEST(Cobs, EqualsTheTextbookEncoderForEveryZeroDensityAndLength) {
+  std::mt19937 rng(77);
+  for (const unsigned one_in : {2u, 4u, 40u, 200u, 500u}) {
+    for (std::size_t len = 0; len <= 1100; len += (len < 300 ? 1 : 7)) {
+      std::vector<u8> in(len);
+      for (auto& b : in) b = rng() % one_in == 0 ? 0 : static_cast<u8>(1 + rng() % 255);
+      ASSERT_EQ(encode(in), textbook_encode(in)) << "length " << len << ", zeros 1 in " << one_in;
+    }
   }
 }
 

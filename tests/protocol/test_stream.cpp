@@ -1,6 +1,7 @@
 // Stream samples: layout by channel mask, scaling and the byte-rate arithmetic.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 #include "palp/protocol/examples.hpp"
@@ -51,6 +52,22 @@ TEST(Stream, EveryMaskRoundTripsAndLeavesAbsentChannelsZero) {
     EXPECT_EQ(back.encoder, (mask & 0x4) ? full.encoder : 0) << mask;
     EXPECT_EQ(back.pressure[5], (mask & 0x100) ? full.pressure[5] : 0) << mask;
   }
+}
+
+// Every channel takes the one-copy path (pack_sample_at): the same bytes as a store per channel.
+TEST(Stream, EveryChannelPacksToTheSameBytesAsAStorePerChannel) {
+  RawSample s;
+  s.i_cmd = -2;
+  s.i_meas = 0x0304;
+  s.encoder = -123456;
+  s.pressure = {1, -2, 0x1234, -4, 5, -32768};
+  s.status = 0x00A5;
+  s.v_cmd = 32767;
+  std::array<u8, 24> fast{}, each{};
+  EXPECT_EQ(pack_sample_at(fast.data(), s, kAllChannels), fast.data() + 24);
+  EXPECT_EQ(detail::pack_channels(each.data(), s, kAllChannels), each.data() + 24);
+  EXPECT_EQ(fast, each);
+  EXPECT_EQ(to_hex(std::vector<u8>(fast.begin(), fast.begin() + 8)), "fe ff 04 03 c0 1d fe ff");
 }
 
 TEST(Stream, UnpackingPastTheEndOfTheDataFails) {

@@ -61,10 +61,10 @@ void Controller::load_program(const proto::FrameHeader& h, const M& m) {
   if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
   release();  // the synthesis (up to ~25 000 instructions) runs with the tick free
   std::uint8_t field = 255;
-  const ErrorCode e = staged_.load(m, params_.control_rate_Hz, field);
-  if (e != ErrorCode::ok) return nak(h, e, field);  // the live program stays as it was
+  const ErrorCode e = programs_.stage(m, params_.control_rate_Hz, field);
+  if (e != ErrorCode::ok) return nak(h, e, field);  // the loaded program stays as it was
   hold();
-  const ErrorCode a = programs_.adopt(staged_);
+  const ErrorCode a = programs_.adopt_staged();
   if (a != ErrorCode::ok) return nak(h, a, 255, busy_detail());
   program_rate_Hz_ = params_.control_rate_Hz;
   ack(h);
@@ -251,14 +251,15 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
       StreamConfig stream;
       bool restream = false;
       if (new_rate) {
-        // keep the stream's sample rate: scale its decimation with the tick rate
+        // keep the stream's sample rate: scale its decimation with the tick rate, within the
+        // rate limit and the u16 (a stream slower than 40 kHz / 65535 = 0.61 Hz stays at 0.61 Hz)
         StreamConfigure sc;
         sc.channels = streamer_.config().channels;
         sc.batch_samples = streamer_.config().batch_samples;
-        sc.decimation = std::max(
-            static_cast<std::uint16_t>(static_cast<std::uint32_t>(streamer_.config().decimation) *
-                                       p.control_rate_Hz / old_rate),
-            min_stream_decimation(p.control_rate_Hz));
+        const std::uint32_t scaled =
+            static_cast<std::uint32_t>(streamer_.config().decimation) * p.control_rate_Hz / old_rate;
+        sc.decimation = static_cast<std::uint16_t>(
+            std::clamp<std::uint32_t>(scaled, min_stream_decimation(p.control_rate_Hz), 65535));
         restream = Streamer::check(sc, p.control_rate_Hz, stream, field, max_stream_rate_Hz()) ==
                    ErrorCode::ok;
       }

@@ -14,89 +14,112 @@ static_assert(std::is_trivially_destructible_v<HoldProgram> &&
                   std::is_trivially_destructible_v<ContactWatchProgram>,
               "the union switches members by constructing over them");
 static_assert(std::is_trivially_copyable_v<ProgramRunner>,
-              "a runner loaded elsewhere can be copied over the live one (programs.hpp)");
+              "a runner is a plain value: tests and tools copy loaded runners");
 
 template <class Program, class Message>
-proto::ErrorCode ProgramRunner::load_as(Program& slot, proto::ProgramKind kind, const Message& m,
-                                        std::uint32_t rate_Hz, std::uint8_t& field_index) {
+proto::ErrorCode ProgramRunner::stage_as(Program Slot::*member, proto::ProgramKind kind,
+                                         const Message& m, std::uint32_t rate_Hz,
+                                         std::uint8_t& field_index) {
   field_index = 255;
-  if (running()) return proto::ErrorCode::busy;
   if (!proto::is_supported_control_rate(rate_Hz)) return proto::ErrorCode::out_of_range;
   const int bad = m.first_out_of_range();
   if (bad >= 0) return detail::out_of_range(static_cast<std::uint8_t>(bad), field_index);
   const proto::ErrorCode e = Program::validate(m, rate_Hz, field_index);
   if (e != proto::ErrorCode::ok) return e;
-  ::new (static_cast<void*>(&slot)) Program();
-  slot.load(m, rate_Hz);
-  kind_ = kind;
-  state_ = proto::ProgramState::loaded;
-  rate_Hz_ = rate_Hz;
-  step_ = 0;
-  repetition_ = 0;
+  Program& staging = slots_[active_ ^ 1u].*member;
+  ::new (static_cast<void*>(&staging)) Program();
+  staging.load(m, rate_Hz);
+  staged_kind_ = kind;
+  staged_rate_Hz_ = rate_Hz;
   return proto::ErrorCode::ok;
 }
+
+proto::ErrorCode ProgramRunner::adopt_staged() {
+  if (running()) return proto::ErrorCode::busy;
+  if (staged_kind_ == proto::ProgramKind::none) return proto::ErrorCode::no_program;
+  // what a load sets; everything else is the runtime state and stays
+  active_ ^= 1u;
+  kind_ = staged_kind_;
+  state_ = proto::ProgramState::loaded;
+  rate_Hz_ = staged_rate_Hz_;
+  step_ = 0;
+  repetition_ = 0;
+  staged_kind_ = proto::ProgramKind::none;
+  return proto::ErrorCode::ok;
+}
+
+proto::ErrorCode ProgramRunner::stage(const proto::LoadHold& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::hold, proto::ProgramKind::hold, m, rate_Hz, field_index);
+}
+proto::ErrorCode ProgramRunner::stage(const proto::LoadRamp& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::ramp, proto::ProgramKind::ramp, m, rate_Hz, field_index);
+}
+proto::ErrorCode ProgramRunner::stage(const proto::LoadSine& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::sine, proto::ProgramKind::sine, m, rate_Hz, field_index);
+}
+proto::ErrorCode ProgramRunner::stage(const proto::LoadSweep& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::sweep, proto::ProgramKind::sweep, m, rate_Hz, field_index);
+}
+proto::ErrorCode ProgramRunner::stage(const proto::LoadMultisine& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::multisine, proto::ProgramKind::multisine, m, rate_Hz, field_index);
+}
+proto::ErrorCode ProgramRunner::stage(const proto::LoadContactWatch& m, std::uint32_t rate_Hz,
+                                      std::uint8_t& field_index) {
+  return stage_as(&Slot::contact, proto::ProgramKind::contact_watch, m, rate_Hz, field_index);
+}
+
+namespace {
+// load() for every Load* message: the busy check, then stage() and adopt_staged()
+template <class Message>
+proto::ErrorCode load_via_stage(ProgramRunner& r, const Message& m, std::uint32_t rate_Hz,
+                                std::uint8_t& field_index) {
+  field_index = 255;
+  if (r.running()) return proto::ErrorCode::busy;
+  const proto::ErrorCode e = r.stage(m, rate_Hz, field_index);
+  return e != proto::ErrorCode::ok ? e : r.adopt_staged();
+}
+}  // namespace
 
 proto::ErrorCode ProgramRunner::load(const proto::LoadHold& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.hold, proto::ProgramKind::hold, m, rate_Hz, field_index);
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 proto::ErrorCode ProgramRunner::load(const proto::LoadRamp& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.ramp, proto::ProgramKind::ramp, m, rate_Hz, field_index);
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 proto::ErrorCode ProgramRunner::load(const proto::LoadSine& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.sine, proto::ProgramKind::sine, m, rate_Hz, field_index);
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 proto::ErrorCode ProgramRunner::load(const proto::LoadSweep& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.sweep, proto::ProgramKind::sweep, m, rate_Hz, field_index);
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 proto::ErrorCode ProgramRunner::load(const proto::LoadMultisine& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.multisine, proto::ProgramKind::multisine, m, rate_Hz, field_index);
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 proto::ErrorCode ProgramRunner::load(const proto::LoadContactWatch& m, std::uint32_t rate_Hz,
                                      std::uint8_t& field_index) {
-  return load_as(slot_.contact, proto::ProgramKind::contact_watch, m, rate_Hz, field_index);
-}
-
-proto::ErrorCode ProgramRunner::adopt(const ProgramRunner& staged) {
-  if (running()) return proto::ErrorCode::busy;
-  if (staged.state_ != proto::ProgramState::loaded) return proto::ErrorCode::no_program;
-  // the staged program only (the union member in use), not the whole 1.8 KB slot
-  switch (staged.kind_) {
-    case proto::ProgramKind::hold: ::new (&slot_.hold) HoldProgram(staged.slot_.hold); break;
-    case proto::ProgramKind::ramp: ::new (&slot_.ramp) RampProgram(staged.slot_.ramp); break;
-    case proto::ProgramKind::sine: ::new (&slot_.sine) SineProgram(staged.slot_.sine); break;
-    case proto::ProgramKind::sweep: ::new (&slot_.sweep) SweepProgram(staged.slot_.sweep); break;
-    case proto::ProgramKind::multisine:
-      ::new (&slot_.multisine) MultisineProgram(staged.slot_.multisine);
-      break;
-    case proto::ProgramKind::contact_watch:
-      ::new (&slot_.contact) ContactWatchProgram(staged.slot_.contact);
-      break;
-    default: return proto::ErrorCode::no_program;
-  }
-  // what load_as() sets; everything else is this runner's runtime state and stays
-  kind_ = staged.kind_;
-  state_ = proto::ProgramState::loaded;
-  rate_Hz_ = staged.rate_Hz_;
-  step_ = 0;
-  repetition_ = 0;
-  return proto::ErrorCode::ok;
+  return load_via_stage(*this, m, rate_Hz, field_index);
 }
 
 proto::ErrorCode ProgramRunner::start(std::uint64_t now_ticks, std::int32_t encoder_count) {
   if (state_ == proto::ProgramState::idle) return proto::ErrorCode::no_program;
   if (running()) return proto::ErrorCode::busy;
   switch (kind_) {
-    case proto::ProgramKind::hold: slot_.hold.start(encoder_count); break;
-    case proto::ProgramKind::ramp: slot_.ramp.start(encoder_count); break;
-    case proto::ProgramKind::sine: slot_.sine.start(encoder_count); break;
-    case proto::ProgramKind::sweep: slot_.sweep.start(encoder_count); break;
-    case proto::ProgramKind::multisine: slot_.multisine.start(encoder_count); break;
-    case proto::ProgramKind::contact_watch: slot_.contact.start(encoder_count); break;
+    case proto::ProgramKind::hold: slot().hold.start(encoder_count); break;
+    case proto::ProgramKind::ramp: slot().ramp.start(encoder_count); break;
+    case proto::ProgramKind::sine: slot().sine.start(encoder_count); break;
+    case proto::ProgramKind::sweep: slot().sweep.start(encoder_count); break;
+    case proto::ProgramKind::multisine: slot().multisine.start(encoder_count); break;
+    case proto::ProgramKind::contact_watch: slot().contact.start(encoder_count); break;
     default: return proto::ErrorCode::no_program;
   }
   state_ = proto::ProgramState::running;
@@ -121,12 +144,12 @@ ProgramStep ProgramRunner::step(std::uint64_t now_ticks, std::int32_t encoder_co
   const std::uint64_t k = now_ticks - start_tick_;
   ProgramTick t;
   switch (kind_) {
-    case proto::ProgramKind::hold: slot_.hold.step(k, encoder_count, t); break;
-    case proto::ProgramKind::ramp: slot_.ramp.step(k, encoder_count, t); break;
-    case proto::ProgramKind::sine: slot_.sine.step(k, encoder_count, t); break;
-    case proto::ProgramKind::sweep: slot_.sweep.step(k, encoder_count, t); break;
-    case proto::ProgramKind::multisine: slot_.multisine.step(k, encoder_count, t); break;
-    case proto::ProgramKind::contact_watch: slot_.contact.step(k, encoder_count, t); break;
+    case proto::ProgramKind::hold: slot().hold.step(k, encoder_count, t); break;
+    case proto::ProgramKind::ramp: slot().ramp.step(k, encoder_count, t); break;
+    case proto::ProgramKind::sine: slot().sine.step(k, encoder_count, t); break;
+    case proto::ProgramKind::sweep: slot().sweep.step(k, encoder_count, t); break;
+    case proto::ProgramKind::multisine: slot().multisine.step(k, encoder_count, t); break;
+    case proto::ProgramKind::contact_watch: slot().contact.step(k, encoder_count, t); break;
     default: t.ended = true; t.end = proto::ProgramEnd::fault; break;  // unreachable
   }
   if (!t.ended) {
@@ -171,10 +194,10 @@ bool ProgramRunner::abort_fault(std::uint64_t now_ticks) {
 
 std::uint16_t ProgramRunner::repetitions_done() const {
   switch (kind_) {
-    case proto::ProgramKind::ramp: return slot_.ramp.repetitions_done();
-    case proto::ProgramKind::sine: return slot_.sine.repetitions_done();
-    case proto::ProgramKind::sweep: return slot_.sweep.repetitions_done();
-    case proto::ProgramKind::multisine: return slot_.multisine.repetitions_done();
+    case proto::ProgramKind::ramp: return slot().ramp.repetitions_done();
+    case proto::ProgramKind::sine: return slot().sine.repetitions_done();
+    case proto::ProgramKind::sweep: return slot().sweep.repetitions_done();
+    case proto::ProgramKind::multisine: return slot().multisine.repetitions_done();
     default: return 0;
   }
 }

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cstddef>
+#include <cstring>
 
 #include "palp/protocol/cobs.hpp"
 #include "palp/protocol/frame.hpp"
@@ -62,8 +63,31 @@ constexpr BatchProblem check_batch(const SampleBatch& b) {
   return BatchProblem::none;
 }
 
+namespace detail {
+// With every channel, the wire sample is RawSample's own bytes on a little-endian machine (the
+// fields in bit order, no padding): one copy instead of eleven stores.
+inline constexpr bool kRawSampleIsWireSample =
+    std::endian::native == std::endian::little && sizeof(RawSample) == 24 &&
+    offsetof(RawSample, i_cmd) == 0 && offsetof(RawSample, i_meas) == 2 &&
+    offsetof(RawSample, encoder) == 4 && offsetof(RawSample, pressure) == 8 &&
+    offsetof(RawSample, status) == 20 && offsetof(RawSample, v_cmd) == 22;
+static_assert(sizeof(RawSample) != 24 || bytes_per_sample(kAllChannels) == sizeof(RawSample));
+/// A store per channel present (any mask, any byte order).
+u8* pack_channels(u8* p, const RawSample& s, u16 mask);
+}  // namespace detail
+
 /// Appends one sample's selected channels to w.
 void pack_sample(Writer& w, const RawSample& s, u16 mask);
+/// The same without a Writer: writes bytes_per_sample(mask) bytes at p (the caller checked the
+/// room, e.g. with Writer::claim once for a run of samples) and returns the end. Every channel
+/// on a little-endian machine is one copy (inline); other masks a store per channel.
+inline u8* pack_sample_at(u8* p, const RawSample& s, u16 mask) {
+  if (detail::kRawSampleIsWireSample && (mask & kAllChannels) == kAllChannels) {
+    std::memcpy(p, &s, sizeof s);
+    return p + sizeof s;
+  }
+  return detail::pack_channels(p, s, mask);
+}
 /// Reads one sample's selected channels from r; false when r runs out.
 bool unpack_sample(Reader& r, RawSample& s, u16 mask);
 

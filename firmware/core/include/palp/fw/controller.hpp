@@ -7,10 +7,13 @@
 // loop. Samples and events cross from tick() to the main loop through SPSC queues. A command acts
 // on the tick's state between two ticks: receive() holds the board's TickGuard (which masks the
 // control interrupt) from the moment a decoded request is handled until its reply is built, and
-// only then encodes the reply with the tick free. A Load* request's program is synthesised into a
-// spare runner with the tick free (a 400-line multisine: ~25 000 instructions, 3-4 ticks) and
-// adopted by the live runner in a short held section. Decoding, the reply's encoding and
-// service()/transmit() never hold the guard. palp-sim sets no guard (one thread calls both).
+// only then encodes the reply with the tick free; a handler releases it meanwhile for work that
+// reads only the message or main-loop state (controller_dispatch.cpp). A Load* request's program
+// is synthesised into the runner's staging slot with the tick free (a 400-line multisine:
+// ~25 000 instructions, 3-4 ticks) and adopted in a short held section (an index flip).
+// Decoding, the reply's encoding and service()/transmit() never hold the guard;
+// load_calibration_block() and set_identity() hold it for what they change. palp-sim sets no
+// guard (one thread calls everything).
 //
 // Time: device time is the tick count over the control rate (exact), anchored at the last rate
 // change (SetParams.control_rate_Hz) so it runs on continuously across it; the host heartbeat
@@ -164,7 +167,8 @@ class Controller {
   void handle(const proto::FrameHeader& h, const M& m, std::uint64_t watchdog_now_us);
   template <class M>
   void dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t watchdog_now_us);
-  /// Load*: the busy check held, the synthesis into staged_ released, the adoption held.
+  /// Load*: the busy check held, the synthesis (ProgramRunner::stage) released, the adoption
+  /// held.
   template <class M>
   void load_program(const proto::FrameHeader& h, const M& m);
   /// The tick guard: hold() then release(); each a no-op when already in that state.
@@ -213,7 +217,6 @@ class Controller {
   Safety safety_;
   SensorMonitor monitor_;
   ProgramRunner programs_;
-  ProgramRunner staged_;  // main loop only: a Load* is synthesised here, then adopted (programs.hpp)
   Streamer streamer_;
 
   std::uint64_t tick_ = 0;   // ticks done

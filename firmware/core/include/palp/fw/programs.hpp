@@ -25,17 +25,19 @@
 // stopped_by_host, fault, timeout - puts the set-point to 0 A at once, in the same tick.
 //
 // Representation: one class per program in a tagged union (kind + union), dispatched with a
-// switch; no virtual functions, no heap. sizeof(ProgramRunner) is about 1.8 KB, nearly all of
-// it the multisine's 400 line phases.
+// switch; no virtual functions, no heap. Two such slots: the active one, which the tick runs,
+// and a staging one, which stage() fills; adopt_staged() swaps their roles. sizeof(ProgramRunner)
+// is about 3.5 KB, nearly all of it the two slots' room for a multisine's 400 line phases.
 //
-// Context: not thread-safe. start/stop/abort_fault/step/adopt belong to the control tick's
-// context (or to code that runs with the tick masked). load() is load-time work; measured on the
-// QEMU Cortex-M4 (-O2): a 400-line multisine ~21000 instructions (random phases) or ~25000
-// (Schroeder), mostly priming two sub-rate points (800 line evaluations): 3-4 ticks at 20 kHz;
-// the default 90-line multisine ~7400; a ramp ~2100, a sweep ~2800 (soft double arithmetic), a
-// sine ~1000, a hold or contact watch < 100. start() < 150. So the controller never loads the
-// live runner: it loads a spare one with the tick running and adopt()s it in a short masked
-// section (a copy of the program only, at most ~1.7 KB).
+// Contexts. Loading is load-time work, measured on the QEMU Cortex-M4 (-O2): a 400-line
+// multisine ~21000 instructions (random phases) or ~25000 (Schroeder), mostly priming two
+// sub-rate points (800 line evaluations): 3-4 ticks at 20 kHz; the default 90-line multisine
+// ~7400; a ramp ~2100, a sweep ~2800 (soft double arithmetic), a sine ~1000, a hold or contact
+// watch < 100. So the work is split: stage() writes only the staging slot and the staged kind
+// and rate, which step() never reads, so it may run in the main loop while the tick runs;
+// adopt_staged() (O(1): an index flip and a few fields) and start/stop/abort_fault/step belong to
+// the tick's context or to code that runs with the tick masked. load() = stage() +
+// adopt_staged(), for a caller that owns both contexts (tests, tools). start() < 150.
 #pragma once
 
 #include <cstdint>
@@ -68,7 +70,7 @@ class ProgramRunner {
   /// Validate and load a program for the control rate (20000 or 40000 Hz). Refusals (the
   /// previous program stays loaded): busy while running; out_of_range with the offending field
   /// (catalogue range first, then the program's own checks), or with field_index 255 for an
-  /// unsupported control rate.
+  /// unsupported control rate. stage() then adopt_staged().
   proto::ErrorCode load(const proto::LoadHold& m, std::uint32_t control_rate_Hz,
                         std::uint8_t& field_index);
   proto::ErrorCode load(const proto::LoadRamp& m, std::uint32_t control_rate_Hz,
@@ -82,12 +84,28 @@ class ProgramRunner {
   proto::ErrorCode load(const proto::LoadContactWatch& m, std::uint32_t control_rate_Hz,
                         std::uint8_t& field_index);
 
-  /// Takes over the program `staged` holds (loaded there by load(), outside the tick): this
-  /// runner ends up exactly as if it had loaded the same message itself. The runtime state stays:
-  /// a contact hold's rest current, contact_latched, the last run's end and times. busy while a
-  /// program runs here, no_program when `staged` has nothing loaded (this runner unchanged).
-  /// Costs a copy of the staged program: at most ~1.7 KB (a 400-line multisine).
-  proto::ErrorCode adopt(const ProgramRunner& staged);
+  /// Validate a program and synthesise it into the staging slot, touching nothing the tick
+  /// reads (see Contexts above). The same refusals as load() except busy: staging while a program
+  /// runs leaves it running; the staged program waits for adopt_staged().
+  proto::ErrorCode stage(const proto::LoadHold& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+  proto::ErrorCode stage(const proto::LoadRamp& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+  proto::ErrorCode stage(const proto::LoadSine& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+  proto::ErrorCode stage(const proto::LoadSweep& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+  proto::ErrorCode stage(const proto::LoadMultisine& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+  proto::ErrorCode stage(const proto::LoadContactWatch& m, std::uint32_t control_rate_Hz,
+                         std::uint8_t& field_index);
+
+  /// The staged program becomes the loaded one, exactly as if load() had loaded it; the runtime
+  /// state stays: a contact hold's rest current, contact_latched, the last run's end and times.
+  /// busy while a program runs, no_program when nothing is staged (both: nothing changes). O(1).
+  proto::ErrorCode adopt_staged();
+  /// What stage() last staged and adopt_staged() has not yet taken (none if nothing).
+  proto::ProgramKind staged_kind() const { return staged_kind_; }
 
   /// ProgramStart at tick now_ticks with the encoder count of that tick (the ramp's
   /// displacement reference and the contact watch's armed_count). no_program when nothing is
@@ -126,14 +144,17 @@ class ProgramRunner {
 
   /// The loaded multisine (kind() == multisine), for tests and per-tick work accounting.
   const MultisineProgram* multisine() const {
-    return kind_ == proto::ProgramKind::multisine ? &slot_.multisine : nullptr;
+    return kind_ == proto::ProgramKind::multisine ? &slot().multisine : nullptr;
   }
 
  private:
+  union Slot;
   template <class Program, class Message>
-  proto::ErrorCode load_as(Program& slot, proto::ProgramKind kind, const Message& m,
-                           std::uint32_t rate_Hz, std::uint8_t& field_index);
+  proto::ErrorCode stage_as(Program Slot::*member, proto::ProgramKind kind, const Message& m,
+                            std::uint32_t rate_Hz, std::uint8_t& field_index);
   bool end_run(std::uint64_t now_ticks, proto::ProgramEnd end);
+  Slot& slot() { return slots_[active_]; }
+  const Slot& slot() const { return slots_[active_]; }
 
   union Slot {
     Slot() : hold() {}
@@ -143,7 +164,11 @@ class ProgramRunner {
     SweepProgram sweep;
     MultisineProgram multisine;
     ContactWatchProgram contact;
-  } slot_;
+  };
+  Slot slots_[2];
+  std::uint8_t active_ = 0;  // the slot the tick runs; the other is the staging slot
+  proto::ProgramKind staged_kind_ = proto::ProgramKind::none;
+  std::uint32_t staged_rate_Hz_ = 20000;
   proto::ProgramKind kind_ = proto::ProgramKind::none;
   proto::ProgramState state_ = proto::ProgramState::idle;
   proto::ProgramEnd end_ = proto::ProgramEnd::completed;
@@ -154,6 +179,9 @@ class ProgramRunner {
   float rest_current_A_ = 0.0f;
   std::uint32_t step_ = 0;
   std::uint16_t repetition_ = 0;
+
+  /// Tests only (tests/fw_core/test_tick_guard.cpp): tells the tick's part from the staging part.
+  friend struct TickStateProbe;
 };
 
 }  // namespace palp::fw

@@ -6,6 +6,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 
 namespace palp::fw {
 
@@ -33,8 +35,8 @@ class Ring {
     if (n > N - size_) return false;
     const std::size_t tail = (head_ + size_) & (N - 1);
     const std::size_t first = n < N - tail ? n : N - tail;  // up to the end of the storage
-    std::copy_n(v, first, items_.data() + tail);  // memmove for trivially copyable T
-    std::copy_n(v + first, n - first, items_.data());
+    copy(items_.data() + tail, v, first);
+    copy(items_.data(), v + first, n - first);
     size_ += n;
     return true;
   }
@@ -42,8 +44,8 @@ class Ring {
   std::size_t pop_n(T* out, std::size_t max) {
     const std::size_t n = max < size_ ? max : size_;
     const std::size_t first = n < N - head_ ? n : N - head_;
-    std::copy_n(items_.data() + head_, first, out);
-    std::copy_n(items_.data(), n - first, out + first);
+    copy(out, items_.data() + head_, first);
+    copy(out + first, items_.data(), n - first);
     head_ = (head_ + n) & (N - 1);
     size_ -= n;
     return n;
@@ -63,6 +65,17 @@ class Ring {
   bool empty() const { return size_ == 0; }
 
  private:
+  // The caller's buffer never overlaps the ring's storage: memcpy, not the memmove std::copy_n
+  // becomes (newlib's memmove copies a byte a step when the two are not equally aligned, as a
+  // frame's bytes in the transmit ring mostly are: firmware/core/README.md "Cost on the target").
+  static void copy(T* to, const T* from, std::size_t n) {
+    if constexpr (std::is_trivially_copyable_v<T>) {
+      if (n != 0) std::memcpy(to, from, n * sizeof(T));
+    } else {
+      std::copy_n(from, n, to);
+    }
+  }
+
   std::array<T, N> items_{};
   std::size_t head_ = 0;
   std::size_t size_ = 0;
