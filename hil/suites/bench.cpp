@@ -17,18 +17,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-
 /// palp-sim placed like the QEMU image's plant (firmware/board/qemu/plant/README.md): the
 /// phantom, and the mount that puts the floating tip (0.5 A) just on its surface.
-const std::vector<std::string> kPlantScene = {"--phantom", "solid_1d", "--mount-mm", "27", "0",
-                                              "-25"};
+// clang-format off
+const std::vector<std::string> kPlantScene = {"--phantom", "solid_1d",
+                                              "--mount-mm", "27", "0", "-25"};
+// clang-format on
 
 /// QEMU running the image with its UART0 on a loopback TCP server (firmware/README.md).
 std::vector<std::string> qemu_command(const std::string& image, std::uint16_t port) {
+  // clang-format off
   return {"qemu-system-arm", "-M", "mps2-an386", "-display", "none", "-monitor", "none",
           "-semihosting-config", "enable=on,target=native",
           "-serial", "tcp:127.0.0.1:" + std::to_string(port) + ",server=on,wait=off",
           "-kernel", image};
+  // clang-format on
 }
 
 const char* env(const char* name) {
@@ -40,8 +43,8 @@ const char* env(const char* name) {
 /// first line: "palp-sim listening on tcp://127.0.0.1:P (device protocol), control on ...".
 /// Returns the URI, or empty with *error set.
 std::string start_palp_sim(std::unique_ptr<Child>& child, std::string& error) {
-  std::vector<std::string> argv = {PALP_SIM_BINARY, "--port", "0", "--control-port", "0",
-                                   "--pace", "fast"};
+  std::vector<std::string> argv = {PALP_SIM_BINARY, "--port", "0", "--control-port", "0"};
+  argv.insert(argv.end(), {"--pace", "fast"});
   argv.insert(argv.end(), kPlantScene.begin(), kPlantScene.end());
   child = std::make_unique<Child>(argv);
   if (!child->running()) {
@@ -54,8 +57,9 @@ std::string start_palp_sim(std::unique_ptr<Child>& child, std::string& error) {
   const std::size_t at = line.find(key);
   const std::size_t end = at == std::string::npos ? at : line.find(' ', at + key.size());
   if (end == std::string::npos) {
-    error = "palp-sim (" + child->command() + ") did not start: " +
-            (line.empty() ? "no banner within 5 s" : line) + " " + child->stderr_text();
+    error = "palp-sim (" + child->command() +
+            ") did not start: " + (line.empty() ? "no banner within 5 s" : line) + " " +
+            child->stderr_text();
     child.reset();
     return {};
   }
@@ -95,8 +99,10 @@ void Bench::SetUp() {
     std::cout << "[  BENCH   ] reference for the indentation: " << reference_uri_ << "\n";
   if (const char* robot = env("PALP_ROBOT_URI"))
     std::cout << "[  BENCH   ] PALP_ROBOT_URI=" << robot << " is set; no suite uses a robot yet\n";
-  if (!failure_.empty()) std::cout << "[  BENCH   ] unusable: " << failure_ << "\n";
-  else if (!skip_.empty()) std::cout << "[  BENCH   ] every scenario is skipped: " << skip_ << "\n";
+  if (!failure_.empty())
+    std::cout << "[  BENCH   ] unusable: " << failure_ << "\n";
+  else if (!skip_.empty())
+    std::cout << "[  BENCH   ] every scenario is skipped: " << skip_ << "\n";
 }
 
 void Bench::TearDown() {
@@ -115,7 +121,8 @@ void Bench::start_simulator() {
 // kQemuAnswer: the image boots in well under a second. Everything that goes wrong fails.
 void Bench::start_qemu(const std::string& image) {
   if (!std::filesystem::exists(image)) {
-    failure_ = "PALP_QEMU_IMAGE=" + image + " does not exist: build it with `cmake --preset "
+    failure_ = "PALP_QEMU_IMAGE=" + image +
+               " does not exist: build it with `cmake --preset "
                "fw-qemu && cmake --build --preset fw-qemu`";
     return;
   }
@@ -269,8 +276,8 @@ double stream_rate_at_most(const DeviceInfo& d, double wanted_Hz) {
   const double top = std::min(wanted_Hz, d.max_stream_rate_Hz);
   if (top <= 0 || d.control_rate_Hz <= 0) return 0;
   const auto control = static_cast<long>(d.control_rate_Hz);
-  for (long decimation = static_cast<long>(std::ceil(d.control_rate_Hz / top)); decimation <= control;
-       ++decimation)
+  for (long decimation = static_cast<long>(std::ceil(d.control_rate_Hz / top));
+       decimation <= control; ++decimation)
     if (control % decimation == 0) return static_cast<double>(control / decimation);
   return 0;
 }

@@ -24,7 +24,8 @@ using namespace std::chrono_literals;
 /// Requests the public API does not send, and where they are proved instead.
 const std::map<proto::MessageId, const char*> kNotSentHere = {
     {proto::MessageId::EnterBootloader, "it reboots the device into its ROM bootloader"},
-    {proto::MessageId::GetDeviceInfo, "the public API does not send it (Hello gets the same reply)"},
+    {proto::MessageId::GetDeviceInfo,
+     "the public API does not send it (Hello gets the same reply)"},
     {proto::MessageId::Heartbeat, "the SDK's I/O thread sends it: Heartbeat.* proves it is taken"},
     {proto::MessageId::CommitCalibration, "it writes flash: Calibration.* proves it"},
 };
@@ -91,7 +92,8 @@ TEST_F(Catalogue, EveryRequestOfTheDevicesMinorThatThePublicApiSendsIsServed) {
     expect_served(m.name, call->second);
     ++checked;
   }
-  std::printf("[  FIGURES ] %d requests served; not sent here: %zu\n", checked, kNotSentHere.size());
+  std::printf("[  FIGURES ] %d requests served; not sent here: %zu\n", checked,
+              kNotSentHere.size());
 }
 
 // ---- every range enforced ---------------------------------------------------------------------
@@ -112,7 +114,10 @@ bool assign(T& field, double v) {
       return false;
     field = static_cast<T>(v);
     return true;
-  } else if constexpr (requires { field[0]; std::size(field); }) {
+  } else if constexpr (requires {
+                         field[0];
+                         std::size(field);
+                       }) {
     return assign(field[0], v);
   } else {
     return false;  // enums, bounded arrays, text: no numeric range of their own here
@@ -148,7 +153,8 @@ void expect_ranges_enforced(const M& valid, const std::function<void(const M&)>&
                       << " (range " << f.lo_text << " .. " << f.hi_text << ") was accepted";
       } catch (const DeviceError& e) {
         bool expected = false;
-        for (const proto::ErrorCode c : codes) expected |= e.code() == static_cast<std::uint16_t>(c);
+        for (const proto::ErrorCode c : codes)
+          expected |= e.code() == static_cast<std::uint16_t>(c);
         EXPECT_TRUE(expected) << M::kName << "." << f.name << ": " << e.what();
         EXPECT_EQ(e.field_index(), index) << M::kName << "." << f.name << ": " << e.what();
       }

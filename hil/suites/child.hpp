@@ -14,9 +14,9 @@ namespace palp::hil {
 
 class Child {
  public:
-  /// Starts argv[0] (a path, or a name looked up in PATH) with these arguments; its stdout is read with read_line(), its
-  /// stderr goes to a file that stderr_text() reads. On failure, running() is false and
-  /// error() says why.
+  /// Starts argv[0] (a path, or a name looked up in PATH) with these arguments; its stdout is read
+  /// with read_line(), its stderr goes to a file that stderr_text() reads. On failure, running() is
+  /// false and error() says why.
   explicit Child(std::vector<std::string> argv);
   ~Child();  ///< stop(): a child is never left behind
   Child(const Child&) = delete;

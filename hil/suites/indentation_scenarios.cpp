@@ -59,10 +59,11 @@ struct Descriptors {
 std::string travel(const IndentationRun& run) {
   const std::vector<double>& z = run.recording.z_mm;
   char text[160];
-  std::snprintf(text, sizeof text, "floated at %.3f mm, contact at %.3f mm, deepest %.3f mm",
-                run.float_z_m * 1e3,
-                run.analysis && run.analysis->contact_z_m ? *run.analysis->contact_z_m.value * 1e3 : NAN,
-                z.empty() ? NAN : *std::max_element(z.begin(), z.end()));
+  std::snprintf(
+      text, sizeof text, "floated at %.3f mm, contact at %.3f mm, deepest %.3f mm",
+      run.float_z_m * 1e3,
+      run.analysis && run.analysis->contact_z_m ? *run.analysis->contact_z_m.value * 1e3 : NAN,
+      z.empty() ? NAN : *std::max_element(z.begin(), z.end()));
   return text;
 }
 
@@ -81,10 +82,14 @@ Descriptors descriptors(const IndentationRun& run, const char* where) {
     return d;
   }
   d.model = analysis::model_name(*a.chosen);
-  if (a.k_tangent_at_delta0_N_per_m) d.k_N_per_m = *a.k_tangent_at_delta0_N_per_m.value;
-  else ADD_FAILURE() << where << ": no k: " << a.k_tangent_at_delta0_N_per_m.reason;
-  if (a.delta0_m) d.delta0_m = *a.delta0_m.value;
-  else ADD_FAILURE() << where << ": no delta0: " << a.delta0_m.reason;
+  if (a.k_tangent_at_delta0_N_per_m)
+    d.k_N_per_m = *a.k_tangent_at_delta0_N_per_m.value;
+  else
+    ADD_FAILURE() << where << ": no k: " << a.k_tangent_at_delta0_N_per_m.reason;
+  if (a.delta0_m)
+    d.delta0_m = *a.delta0_m.value;
+  else
+    ADD_FAILURE() << where << ": no delta0: " << a.delta0_m.reason;
   return d;
 }
 
@@ -127,12 +132,12 @@ TEST_F(Indentation, AShortStaircaseGivesFiniteKAndDelta0ConsistentWithTheModelAn
   const IndentationRun ref_run = indent_and_restore(ref, s);
   const Descriptors there = descriptors(ref_run, "the reference");
   ASSERT_FALSE(HasFailure());
-  std::printf("[  FIGURES ] reference %s: k %.1f N/m, delta0 %.3f mm (%s); %s; device/reference "
-              "k %+.1f %%, delta0 %+.1f %%\n",
-              ref_uri.c_str(), there.k_N_per_m, there.delta0_m * 1e3, there.model.c_str(),
-              travel(ref_run).c_str(),
-              100 * (here.k_N_per_m / there.k_N_per_m - 1),
-              100 * (here.delta0_m / there.delta0_m - 1));
+  std::printf(
+      "[  FIGURES ] reference %s: k %.1f N/m, delta0 %.3f mm (%s); %s; device/reference "
+      "k %+.1f %%, delta0 %+.1f %%\n",
+      ref_uri.c_str(), there.k_N_per_m, there.delta0_m * 1e3, there.model.c_str(),
+      travel(ref_run).c_str(), 100 * (here.k_N_per_m / there.k_N_per_m - 1),
+      100 * (here.delta0_m / there.delta0_m - 1));
   EXPECT_NEAR(here.k_N_per_m, there.k_N_per_m, kAgreeK * there.k_N_per_m);
   EXPECT_NEAR(here.delta0_m, there.delta0_m, kAgreeDelta0 * there.delta0_m);
 }

@@ -108,7 +108,8 @@ TEST_F(Ramp, TheCommandedStaircaseIsExactSampleBySampleAndTheProgramCompletes) {
   const std::vector<int> levels = {0, 1, 2, 3, 4, 5, 4, 3, 2, 1, 0};
   std::size_t first = 0;
   while (first < s.size() && s[first].i_cmd_A == 0.0) ++first;
-  ASSERT_GE(s.size(), first + levels.size() * per_stair + 1) << "the stream ended before the ramp did";
+  ASSERT_GE(s.size(), first + levels.size() * per_stair + 1)
+      << "the stream ended before the ramp did";
   int wrong = 0;
   for (std::size_t k = 0; k < levels.size() * per_stair; ++k) {
     const double want = 0.5 + 0.1 * levels[k / per_stair];
@@ -117,7 +118,8 @@ TEST_F(Ramp, TheCommandedStaircaseIsExactSampleBySampleAndTheProgramCompletes) {
       ADD_FAILURE() << "sample " << k << " of the ramp: " << got << " A, want " << want << " A";
   }
   EXPECT_EQ(wrong, 0);
-  EXPECT_EQ(s[first + levels.size() * per_stair].i_cmd_A, 0.0) << "the current returns to 0 A at the end";
+  EXPECT_EQ(s[first + levels.size() * per_stair].i_cmd_A, 0.0)
+      << "the current returns to 0 A at the end";
   // the program's end lies 0.55 s after its start, which the first ramp sample follows by less
   // than a sample period
   const double ramp_t0 = s[first].t_device_s;
@@ -140,8 +142,10 @@ TEST_F(Stream, FiveKilohertzForTwoSecondsHasNoGaps) {
   while (s.size() < static_cast<std::size_t>(std::lround(2.0 * rate_Hz))) {
     auto item = probe().next(5s);
     ASSERT_TRUE(item.has_value()) << "the stream stopped after " << s.size() << " samples";
-    if (const Sample* x = std::get_if<Sample>(&*item)) s.push_back(*x);
-    else gaps.push_back(std::get<Gap>(*item));
+    if (const Sample* x = std::get_if<Sample>(&*item))
+      s.push_back(*x);
+    else
+      gaps.push_back(std::get<Gap>(*item));
   }
   probe().stop_stream();
   EXPECT_TRUE(gaps.empty()) << gaps.size() << " gaps, the first at index " << gaps[0].first_index

@@ -25,7 +25,8 @@ TEST_F(Parameters, SixChangedParametersReadBackExactlyAndTheOriginalsReadBackAft
   changed.heartbeat_timeout_ms = other_than<std::uint32_t>(saved.heartbeat_timeout_ms, 750, 800);
   changed.travel_min_counts = saved.travel_min_counts - 1;  // a wider window: trips nothing
   changed.travel_max_counts = saved.travel_max_counts + 1;
-  changed.contact_output_hold_ms = other_than<std::uint16_t>(saved.contact_output_hold_ms, 150, 200);
+  changed.contact_output_hold_ms =
+      other_than<std::uint16_t>(saved.contact_output_hold_ms, 150, 200);
   ASSERT_LE(changed.current_clamp_A, probe().info().max_current_A);
   probe().set_params(changed);
   EXPECT_EQ(field_differences(probe().params(), changed), "");
@@ -59,7 +60,8 @@ class CalibrationBlock : public Scenario {
   bool dirty_ = false;
 };
 
-TEST_F(CalibrationBlock, ASetCalibrationReadsBackExactlyBeforeAndAfterCommitAndTheOriginalIsRestored) {
+TEST_F(CalibrationBlock,
+       ASetCalibrationReadsBackExactlyBeforeAndAfterCommitAndTheOriginalIsRestored) {
   const Calibration original = *original_;
   Calibration changed = original;
   // values a float holds exactly, inside every catalogue range and the device's own checks
@@ -68,7 +70,8 @@ TEST_F(CalibrationBlock, ASetCalibrationReadsBackExactlyBeforeAndAfterCommitAndT
   for (std::size_t k = 0; k < changed.pressure_offset_Pa.size(); ++k) {
     const float step = 0.5f * static_cast<float>(k + 1);
     changed.pressure_offset_Pa[k] = other_than(original.pressure_offset_Pa[k], step, -step);
-    changed.pressure_gain[k] = other_than(original.pressure_gain[k], 1.0f + step / 8, 1.0f - step / 16);
+    changed.pressure_gain[k] =
+        other_than(original.pressure_gain[k], 1.0f + step / 8, 1.0f - step / 16);
   }
   changed.spring_k_N_per_m = other_than(original.spring_k_N_per_m, 44.0f, 43.5f);
   ASSERT_NE(field_differences(changed, original), "");

@@ -20,7 +20,8 @@ TEST_F(Stream, AStaircaseStreamedAtTheAdvertisedMaxRateWithEveryChannelArrivesWh
       << "the advertised " << rate_Hz << " Hz does not divide the control rate "
       << d.control_rate_Hz << " Hz: no decimation streams it";
   std::uint16_t channels = channel::all;
-  if (!d.has(proto::Capability::pressure)) channels &= static_cast<std::uint16_t>(~channel::pressure);
+  if (!d.has(proto::Capability::pressure))
+    channels &= static_cast<std::uint16_t>(~channel::pressure);
   const StreamInfo info = probe().configure_stream({.rate_Hz = rate_Hz, .channels = channels});
   EXPECT_EQ(info.rate_Hz, rate_Hz);
   EXPECT_EQ(info.channels, channels);
@@ -51,7 +52,8 @@ TEST_F(Stream, AStaircaseStreamedAtTheAdvertisedMaxRateWithEveryChannelArrivesWh
   int out_of_step = 0;
   for (std::size_t k = 0; k < s.size(); ++k) {
     out_of_step += s[k].index != k;
-    if (k > 0) out_of_step += std::fabs(s[k].t_device_s - s[k - 1].t_device_s - 1.0 / rate_Hz) > 1e-9;
+    if (k > 0)
+      out_of_step += std::fabs(s[k].t_device_s - s[k - 1].t_device_s - 1.0 / rate_Hz) > 1e-9;
   }
   EXPECT_EQ(out_of_step, 0) << "indices 0, 1, 2, ... exactly one period apart";
 
@@ -63,7 +65,8 @@ TEST_F(Stream, AStaircaseStreamedAtTheAdvertisedMaxRateWithEveryChannelArrivesWh
   for (std::size_t k = 0; k < stairs_A.size() * per_stair; ++k) {
     const Sample& x = s[first + k];
     const double want = stairs_A[k / per_stair];
-    const bool running = (x.status >> static_cast<unsigned>(proto::StatusBit::program_running)) & 1u;
+    const bool running =
+        (x.status >> static_cast<unsigned>(proto::StatusBit::program_running)) & 1u;
     if ((std::fabs(x.i_cmd_A - want) >= kLsb_A / 2 || !running) && ++wrong <= 5)
       ADD_FAILURE() << "sample " << k << " of the program: " << x.i_cmd_A << " A"
                     << (running ? "" : ", not marked running") << "; want " << want << " A";
@@ -74,7 +77,8 @@ TEST_F(Stream, AStaircaseStreamedAtTheAdvertisedMaxRateWithEveryChannelArrivesWh
   EXPECT_EQ((after.status >> static_cast<unsigned>(proto::StatusBit::program_running)) & 1u, 0u);
   // the channels carry the plant's values, not zeros: the coil moved, the current flowed
   EXPECT_NEAR(s[first + 2 * per_stair + per_stair - 1].i_A, 0.4, 0.04) << "measured at 0.4 A";
-  EXPECT_NE(s[first + 3 * per_stair - 1].encoder_counts, s[first > 0 ? first - 1 : 0].encoder_counts);
+  EXPECT_NE(s[first + 3 * per_stair - 1].encoder_counts,
+            s[first > 0 ? first - 1 : 0].encoder_counts);
   EXPECT_NE(s[first + per_stair - 1].v_cmd_V, 0.0);
 
   const HealthCounters h = probe().health();
@@ -88,10 +92,11 @@ TEST_F(Stream, AStaircaseStreamedAtTheAdvertisedMaxRateWithEveryChannelArrivesWh
   EXPECT_EQ(h.usb_in_not_drained, before.usb_in_not_drained);
   EXPECT_EQ(h.control_overruns, before.control_overruns);
   EXPECT_EQ(h.device_rx_rejected, before.device_rx_rejected);
-  std::printf("[  FIGURES ] %zu samples at %.0f Hz, channels 0x%03x (%u wire bytes/s), "
-              "device backlog at most %llu samples\n",
-              s.size(), rate_Hz, channels, info.wire_bytes_per_s,
-              static_cast<unsigned long long>(h.stream_backlog_max));
+  std::printf(
+      "[  FIGURES ] %zu samples at %.0f Hz, channels 0x%03x (%u wire bytes/s), "
+      "device backlog at most %llu samples\n",
+      s.size(), rate_Hz, channels, info.wire_bytes_per_s,
+      static_cast<unsigned long long>(h.stream_backlog_max));
 }
 
 }  // namespace

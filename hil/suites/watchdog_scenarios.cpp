@@ -2,10 +2,9 @@
 // the device must bring the coil to 0 A by itself within its heartbeat timeout. The doomed host
 // is this executable re-run with kHostLossChildFlag; it speaks the public SDK only, as every
 // scenario does. What the scenario proves is in README.md.
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
@@ -133,7 +132,8 @@ TEST_F(HostLoss, AKilledHostsHoldEndsInHeartbeatTimeoutWithTheCoilAt0AWithinTheT
   Clock::time_point first{};
   std::map<std::string, std::string> last;
   int sightings = 0;
-  while (first == Clock::time_point{} || Clock::now() - first < 2 * std::chrono::milliseconds(kTimeout_ms)) {
+  while (first == Clock::time_point{} ||
+         Clock::now() - first < 2 * std::chrono::milliseconds(kTimeout_ms)) {
     ASSERT_TRUE(host.read_line(line, 10s))
         << "the host printed nothing for 10 s; its stderr: " << host.stderr_text();
     ASSERT_EQ(line.rfind("holding ", 0), 0u) << line << host.stderr_text();
@@ -143,7 +143,8 @@ TEST_F(HostLoss, AKilledHostsHoldEndsInHeartbeatTimeoutWithTheCoilAt0AWithinTheT
     if (first == Clock::time_point{}) first = Clock::now();
     ++sightings;
   }
-  EXPECT_NEAR(std::atof(last["i_A"].c_str()), kHold_A, 0.1 * kHold_A) << "the coil carries the hold";
+  EXPECT_NEAR(std::atof(last["i_A"].c_str()), kHold_A, 0.1 * kHold_A)
+      << "the coil carries the hold";
   ASSERT_TRUE(host.read_line(line, 5s)) << host.stderr_text();  // a fresh sighting, then at once:
   last = fields(line);
   host.signal(SIGKILL);
@@ -169,13 +170,15 @@ TEST_F(HostLoss, AKilledHostsHoldEndsInHeartbeatTimeoutWithTheCoilAt0AWithinTheT
   EXPECT_EQ(ps.end, proto::ProgramEnd::fault);
   EXPECT_LE(looked_s, std::chrono::duration<double>(kLookAfterKill + kConnectAllowance).count());
   // device time from the last sighting to the hold's end (its elapsed time stops at the end)
-  const double trip_after_sighting_s = static_cast<double>(ps.elapsed_us) * 1e-6 - sighted_elapsed_s;
-  std::printf("[  FIGURES ] %d sightings of the %.1f A hold; killed; the device seen at 0 A, "
-              "faulted heartbeat_timeout, %.3f s after the kill (the timeout is %.3f s); the hold "
-              "ended %.3f s of device time after the last sighting; the device clock ran %.3f s "
-              "per host s%s\n",
-              sightings, kHold_A, looked_s, kTimeout_ms * 1e-3, trip_after_sighting_s, clock_rate,
-              simulated ? " (palp-sim: its program clock runs at its pace)" : "");
+  const double trip_after_sighting_s =
+      static_cast<double>(ps.elapsed_us) * 1e-6 - sighted_elapsed_s;
+  std::printf(
+      "[  FIGURES ] %d sightings of the %.1f A hold; killed; the device seen at 0 A, "
+      "faulted heartbeat_timeout, %.3f s after the kill (the timeout is %.3f s); the hold "
+      "ended %.3f s of device time after the last sighting; the device clock ran %.3f s "
+      "per host s%s\n",
+      sightings, kHold_A, looked_s, kTimeout_ms * 1e-3, trip_after_sighting_s, clock_rate,
+      simulated ? " (palp-sim: its program clock runs at its pace)" : "");
   if (!simulated) {
     EXPECT_LE(trip_after_sighting_s, kTimeout_ms * 1e-3 + kTripLateness_s);
     if (std::fabs(clock_rate - 1.0) < kSamePace) {
