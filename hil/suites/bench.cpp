@@ -272,6 +272,15 @@ std::vector<Sample> samples_until(Probe& probe, double t_end_s, std::vector<Gap>
   return out;
 }
 
+std::string gaps_text(const std::vector<Gap>& gaps) {
+  if (gaps.empty()) return "";
+  std::uint64_t missing = 0;
+  for (const Gap& g : gaps) missing += g.count;
+  return std::to_string(gaps.size()) + " gaps, " + std::to_string(missing) +
+         " samples; the first: " + std::to_string(gaps[0].count) + " samples at index " +
+         std::to_string(gaps[0].first_index) + " (" + gap_source_name(gaps[0].source) + ")";
+}
+
 double stream_rate_at_most(const DeviceInfo& d, double wanted_Hz) {
   const double top = std::min(wanted_Hz, d.max_stream_rate_Hz);
   if (top <= 0 || d.control_rate_Hz <= 0) return 0;

@@ -102,6 +102,9 @@ class Scenario : public ::testing::Test {
 std::vector<Sample> samples_until(Probe& probe, double t_end_s, std::vector<Gap>& gaps,
                                   std::chrono::milliseconds patience = std::chrono::seconds(5));
 
+/// "" for none, else "N gaps, M samples; the first: K samples at index I (source)".
+std::string gaps_text(const std::vector<Gap>& gaps);
+
 /// The highest stream rate at most `wanted_Hz` that the device streams (DeviceInfo's
 /// max_stream_rate_Hz) and that divides its control rate: `wanted_Hz` itself on palp-sim and a
 /// USB bench, less on a slow link (QEMU's UART).
