@@ -4,14 +4,16 @@
 #     max_stream_rate_Hz (EXPECT_MAX_RATE_HZ),
 #   - palpctl run hold at 0.3 A for 1 s completes and the measured current of its last half
 #     second averages 0.3 A within 10 mA,
-#   - QEMU is still running at the end (the image neither faulted nor exited).
+#   - QEMU is still running after them (the image neither faulted nor exited),
+#   - an EnterBootloader request then ends QEMU with the board's exit status 42.
 #
 #   cmake -DIMAGE=<elf> -DPALPCTL=<palpctl> -DWORK_DIR=<dir> -DEXPECT_MAX_RATE_HZ=<n>
 #         [-DHINT=<text>] -P run_firmware_smoke.cmake
 #
 # QEMU runs with the command line of firmware/README.md on a free port (a random one, retried
 # when it is taken), every step under `timeout`, so a hang fails instead of waiting forever; QEMU
-# is killed at the end whatever happened. A missing image, QEMU or palpctl is a failure.
+# is killed at the end whatever happened. A missing image, QEMU or palpctl is a failure. The
+# bootloader request is sent by bash's /dev/tcp (palpctl has no such command).
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var IMAGE PALPCTL WORK_DIR EXPECT_MAX_RATE_HZ)
@@ -45,11 +47,24 @@ set(qemu_pid "")
 foreach(attempt RANGE 1 8)
   string(RANDOM LENGTH 4 ALPHABET 0123456789 r)
   math(EXPR port "20000 + (1${r} - 10000) * 4")  # the 1 keeps a leading 0 from reading as octal
-  # backgrounded by sh with its output in a file, so execute_process returns at once with the pid
+  # backgrounded by sh with its output in a file, so execute_process returns at once; a subshell
+  # writes QEMU's (timeout's) pid and, when it ends, its exit status into files
+  file(REMOVE "${WORK_DIR}/qemu.pid" "${WORK_DIR}/qemu.rc")
   execute_process(
-    COMMAND sh -c "\"$0\" 120 \"$1\" -M mps2-an386 -display none -monitor none -semihosting-config enable=on,target=native -serial tcp:127.0.0.1:$2,server=on,wait=off -kernel \"$3\" >\"$4\" 2>&1 </dev/null & echo $!"
-            "${TIMEOUT}" "${QEMU}" "${port}" "${IMAGE}" "${qemu_log}"
-    OUTPUT_VARIABLE pid OUTPUT_STRIP_TRAILING_WHITESPACE)
+    COMMAND sh -c "( \"$0\" 120 \"$1\" -M mps2-an386 -display none -monitor none -semihosting-config enable=on,target=native -serial tcp:127.0.0.1:$2,server=on,wait=off -kernel \"$3\" >\"$4\" 2>&1 </dev/null & echo $! >\"$5.pid\"; wait $!; echo $? >\"$5.rc\" ) >/dev/null 2>&1 &"
+            "${TIMEOUT}" "${QEMU}" "${port}" "${IMAGE}" "${qemu_log}" "${WORK_DIR}/qemu")
+  set(pid "")
+  foreach(wait RANGE 1 50)
+    execute_process(COMMAND sleep 0.1)
+    if(EXISTS "${WORK_DIR}/qemu.pid")
+      file(READ "${WORK_DIR}/qemu.pid" pid)
+      string(STRIP "${pid}" pid)
+      break()
+    endif()
+  endforeach()
+  if(pid STREQUAL "")
+    message(FATAL_ERROR "the shell that starts QEMU wrote no pid within 5 s")
+  endif()
   execute_process(COMMAND sleep 0.5)
   execute_process(COMMAND kill -0 ${pid} RESULT_VARIABLE dead)
   if(dead EQUAL 0)
@@ -149,13 +164,34 @@ if(failure STREQUAL "")
   endif()
 endif()
 
-# ---- QEMU still up, then ended --------------------------------------------------------------------
+# ---- QEMU still up; the bootloader request ends it with status 42 --------------------------------
 execute_process(COMMAND kill -0 ${qemu_pid} RESULT_VARIABLE gone)
-execute_process(COMMAND kill ${qemu_pid})
-file(READ "${qemu_log}" log)
 if(NOT gone EQUAL 0)
-  fail("QEMU exited during the test (the image faulted or exited): ${log}")
+  fail("QEMU exited during the test (the image faulted or exited)")
+elseif(failure STREQUAL "")
+  # EnterBootloader{magic 0x544F4F42}, seq 7, protocol 1.1: header 01 01 04 00 07 00 04 00,
+  # payload 42 4f 4f 54, CRC-32 e8 7d 22 d9, COBS-encoded with its 00 delimiter (SPEC.md §4;
+  # made like the EnterBootloader vector of protocol/vectors/messages.txt)
+  set(frame "\\x04\\x01\\x01\\x04\\x02\\x07\\x02\\x04\\x09\\x42\\x4f\\x4f\\x54\\xd9\\x22\\x7d\\xe8\\x00")
+  execute_process(COMMAND ${TIMEOUT} 10 bash -c "exec 3<>/dev/tcp/127.0.0.1/$0 && printf \"$1\" >&3 && cat <&3 >/dev/null"
+                          ${port} ${frame}
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  set(status "")
+  foreach(wait RANGE 1 50)
+    if(EXISTS "${WORK_DIR}/qemu.rc")
+      file(READ "${WORK_DIR}/qemu.rc" status)
+      string(STRIP "${status}" status)
+      break()
+    endif()
+    execute_process(COMMAND sleep 0.1)
+  endforeach()
+  message(STATUS "EnterBootloader: QEMU exit status '${status}'")
+  if(NOT status STREQUAL "42")
+    fail("after EnterBootloader QEMU's exit status is '${status}', not 42 (bash: rc ${rc} ${err})")
+  endif()
 endif()
+execute_process(COMMAND kill ${qemu_pid} ERROR_QUIET)
+file(READ "${qemu_log}" log)
 if(NOT failure STREQUAL "")
   message(FATAL_ERROR "${failure}\nQEMU's output: ${log}")
 endif()

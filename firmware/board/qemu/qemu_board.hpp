@@ -70,9 +70,6 @@ class QemuBoard {
   void idle(app::HasWork has_work, void* ctx);
   [[noreturn]] void enter_bootloader();
 
-  /// The plant the sensors come from (for figures; the app never reads it).
-  const FloatPlant& plant() const { return plant_; }
-
   // --- interrupt handlers (qemu_board.cpp's vector entries call them) ---------------------------
   void on_tick_irq();
   void on_rx_irq();

@@ -51,7 +51,7 @@ class App {
     board_.start_tick(rate_Hz_, TickHandler{&App::tick_entry, this});
   }
 
-  /// One pass of the main loop (run() repeats it; a host test may call it directly).
+  /// One pass of the main loop (run() repeats it; tests/app calls it over a fake board).
   void step() {
     const std::size_t received = board_.link_read(rx_, sizeof rx_);
     if (received > 0) receive(received);
@@ -109,7 +109,7 @@ class App {
   // staged; link_busy_ says the board's transmit interrupt will wake the loop.
   void flush() {
     if (tx_sent_ == tx_size_) {
-      tx_sent_ = tx_size_ = 0;
+      tx_sent_ = 0;
       tx_size_ = controller_.transmit(tx_, sizeof tx_);
       if (tx_size_ == 0) return;
     }
