@@ -24,8 +24,8 @@ int list(const Context& ctx) {
     return kOk;
   }
   if (devices.empty()) {
-    std::cout << "no palp controller found on USB (palp-sim is reached with "
-                 "--uri sim://HOST:PORT)\n";
+    std::cout << "no palp controller found on USB (a UART-attached board is reached with "
+                 "--uri serial:///dev/ttyX, palp-sim with --uri tcp://HOST:PORT)\n";
     return kOk;
   }
   for (const auto& d : devices) {

@@ -20,8 +20,10 @@ int main(int argc, char** argv) {
                "palpctl"};
   app.set_version_flag("--version", std::string("palpctl ") + palp::sdk_version());
   app.add_option("--uri", ctx.uri,
-                 "The controller: usb://[SERIAL], hid://[SERIAL], sim://HOST:PORT "
-                 "(default from $PALP_URI, else sim://127.0.0.1:7070)")
+                 "The controller: usb://[SERIAL], hid://[SERIAL], serial:///dev/ttyX[?baud=N] "
+                 "(a UART-attached board; 115200 baud unless told), tcp://HOST:PORT (palp-sim, "
+                 "or the firmware under QEMU), sim://HOST:PORT (default from $PALP_URI, else "
+                 "sim://127.0.0.1:7070)")
       ->envname("PALP_URI")
       ->capture_default_str();
   app.add_option("--timeout-s", ctx.timeout_s, "Wait this long for each reply from the device")

@@ -215,6 +215,7 @@ void Session::io_loop() {
       if (n > 0) on_bytes(buf.data(), n);
       service_timers();
     } catch (const ConnectionError& e) {
+      t.reset();  // link_lost lets the session's copy go too
       link_lost(e.what());
       if (!options_.reconnect || !reopenable_) {
         std::lock_guard lock(mu_);
@@ -338,6 +339,9 @@ void Session::service_timers() {
 void Session::link_lost(const std::string& why) {
   std::lock_guard lock(mu_);
   link_up_ = false;
+  // the lost transport is closed before anything reopens the URI: a tty stays locked, and a
+  // replugged USB-serial adapter gets its old name back only once the last fd on it is closed
+  transport_.reset();
   if (waiting_seq_)
     reply_error_ = "the link to " + uri_ + " was lost while waiting for a reply (" + why + ")" +
                    (options_.reconnect && reopenable_ ? "; the SDK is restoring the session: retry" : "");

@@ -51,6 +51,7 @@ void Session::write_message(const M& m, std::uint16_t seq) {
     std::lock_guard lock(mu_);
     t = transport_;
   }
+  if (!t) throw ConnectionError("the link to " + uri_ + " was lost");
   std::lock_guard wl(write_mu_);
   t->write(std::span<const std::uint8_t>(wire.data(), n), options_.timeout);
 }

@@ -48,8 +48,8 @@ std::size_t FdTransport::read(std::span<std::uint8_t> buf, std::chrono::millisec
   pollfd p{fd_, POLLIN, 0};
   const int r = ::poll(&p, 1, static_cast<int>(timeout.count()));
   if (r <= 0) return 0;  // nothing in time, or a signal: the caller reads again
-  const ssize_t n = peer_.socket ? ::recv(fd_, buf.data(), buf.size(), 0)
-                                 : ::read(fd_, buf.data(), buf.size());
+  const ssize_t n =
+      peer_.socket ? ::recv(fd_, buf.data(), buf.size(), 0) : ::read(fd_, buf.data(), buf.size());
   if (n == 0) closed();
   if (n < 0) {
     if (errno == EINTR) return 0;

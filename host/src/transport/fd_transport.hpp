@@ -12,9 +12,9 @@ namespace palp::detail {
 
 /// What an FdTransport is connected to, for its behaviour and its messages.
 struct FdPeer {
-  std::string uri;       ///< the URI as given (uri())
-  std::string name;      ///< starts every message: "palp-sim at sim://127.0.0.1:7070"
-  bool socket = true;    ///< send(MSG_NOSIGNAL) (no SIGPIPE) rather than write()
+  std::string uri;     ///< the URI as given (uri())
+  std::string name;    ///< starts every message: "palp-sim at sim://127.0.0.1:7070"
+  bool socket = true;  ///< send(MSG_NOSIGNAL) (no SIGPIPE) rather than write()
   std::uint32_t max_bytes_per_s = 0;
 };
 

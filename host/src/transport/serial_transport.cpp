@@ -23,7 +23,8 @@ std::string open_refusal(const std::string& path, int err) {
     case ENOENT:
     case ENODEV:
     case ENXIO:
-      return "serial device " + path + " does not exist (is the board plugged in and powered? "
+      return "serial device " + path +
+             " does not exist (is the board plugged in and powered? "
              "`ls /dev/ttyUSB* /dev/ttyACM*` lists the serial devices)";
     case EACCES:
     case EPERM:
@@ -53,7 +54,8 @@ void make_raw(int fd, const termios& current, speed_t speed, const std::string& 
   if (::tcsetattr(fd, TCSANOW, &t) != 0 || ::tcgetattr(fd, &back) != 0)
     throw ConnectionError("cannot configure serial device " + path + ": " + std::strerror(errno));
   if (::cfgetospeed(&back) != speed)
-    throw ConnectionError("serial device " + path + " did not take the baud rate asked for "
+    throw ConnectionError("serial device " + path +
+                          " did not take the baud rate asked for "
                           "(its driver may not support it): choose another with ?baud=N");
   ::tcflush(fd, TCIFLUSH);  // bytes from before this session
 }
@@ -64,8 +66,7 @@ std::unique_ptr<Transport> open_serial_transport(const Uri& uri,
                                                  std::chrono::milliseconds /*timeout*/) {
   const std::string& path = uri.path;
   const std::optional<speed_t> speed = termios_speed(uri.baud);
-  if (!speed)
-    throw ConfigError("transport URI '" + uri.text + "': " + unsupported_baud(uri.baud));
+  if (!speed) throw ConfigError("transport URI '" + uri.text + "': " + unsupported_baud(uri.baud));
   // O_NONBLOCK: open() does not wait for a modem's carrier, and reads and writes never block
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw ConnectionError(open_refusal(path, errno));
@@ -85,9 +86,10 @@ std::unique_ptr<Transport> open_serial_transport(const Uri& uri,
   }
   // before anything changes its settings: a tty another host uses is left as it is
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
-    return fail(ConnectionError(
-        "serial device " + path + " is in use: another palp host holds its lock (a program "
-        "using the SDK, or palpctl); close it first (`fuser " + path + "` names it)"));
+    return fail(ConnectionError("serial device " + path +
+                                " is in use: another palp host holds its lock (a program "
+                                "using the SDK, or palpctl); close it first (`fuser " +
+                                path + "` names it)"));
   try {
     make_raw(fd, current, *speed, path);
   } catch (const ConnectionError& e) {

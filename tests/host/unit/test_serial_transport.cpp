@@ -4,7 +4,6 @@
 // with messages that name the path; the far end closing is a ConnectionError at once, not a hang.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <termios.h>
 
@@ -122,7 +121,8 @@ TEST(SerialTransport, ATtyAlreadyOpenIsRefusedAsInUseAndKeepsItsSettings) {
   EXPECT_EQ(error_of<palp::ConnectionError>(pty.uri()),
             "serial device " + pty.slave_name() +
                 " is in use: another palp host holds its lock (a program using the SDK, or "
-                "palpctl); close it first (`fuser " + pty.slave_name() + "` names it)");
+                "palpctl); close it first (`fuser " +
+                pty.slave_name() + "` names it)");
   termios s{};
   const int fd = ::open(pty.slave_name().c_str(), O_RDWR | O_NOCTTY);
   ASSERT_GE(fd, 0);
