@@ -28,8 +28,9 @@ class Child {
   /// The command line, for messages.
   std::string command() const;
 
-  /// The next line of its stdout (without the newline), waiting at most `patience`; false when
-  /// none came (the child closed stdout, or the time ran out).
+  /// The next line of its stdout (without the newline), waiting at most `patience` (0: only
+  /// what the pipe holds already); false when none came (the child closed stdout, or the time
+  /// ran out).
   bool read_line(std::string& line, std::chrono::milliseconds patience);
   /// What it wrote on stderr so far (at most the last 4 kB).
   std::string stderr_text() const;
