@@ -208,6 +208,7 @@ void Scenario::SetUp() {
   if (!bench.skip_reason().empty()) GTEST_SKIP() << bench.skip_reason();
   connect();
   saved_ = probe_->params();
+  overruns_at_start_ = probe_->health().control_overruns;
   const FaultInfo f = probe_->fault();
   if (f.reason != proto::FaultReason::none) {
     std::cout << "[  BENCH   ] cleared a fault latched before this scenario: " << f.text << "\n";
@@ -248,6 +249,13 @@ void Scenario::TearDown() {
   }
   // leave the device as found: nothing running, the parameters back, no fault latched
   try {
+    // a failure while the device dropped control ticks (it could not keep its tick: under QEMU,
+    // the host did not run it) says so: the likely cause is the machine, not the firmware
+    const std::uint32_t dropped = probe_->health().control_overruns - overruns_at_start_;
+    if (HasFailure() && dropped > 0)
+      std::cout << "[  BENCH   ] the device dropped " << dropped
+                << " control ticks during this scenario (it could not keep its tick; under QEMU: "
+                   "the host did not run QEMU in time, a loaded machine)\n";
     if (probe_->program_status().state == proto::ProgramState::running) probe_->stop();
     if (probe_->status().streaming) probe_->stop_stream();
     probe_->set_params(saved_);

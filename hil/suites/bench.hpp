@@ -95,6 +95,7 @@ class Scenario : public ::testing::Test {
  private:
   std::unique_ptr<Probe> probe_;
   Params saved_{};
+  std::uint32_t overruns_at_start_ = 0;  ///< Health.control_overruns when the scenario began
 };
 
 /// The samples streamed up to device time t_end_s (the first sample at or after it included),
