@@ -130,6 +130,7 @@ void QemuBoard::on_tick_irq() {
   backlog_ += due;
   if (backlog_ > max_backlog_) {
     missed_ticks_ += static_cast<std::uint32_t>(backlog_ - max_backlog_);
+    dropped_clocks_ += (backlog_ - max_backlog_) * tick_period_clocks_;
     backlog_ = max_backlog_;
   }
   for (std::uint32_t k = 0; k < kCatchUpPerIrq && backlog_ > 0; ++k) {
@@ -171,7 +172,16 @@ std::uint64_t QemuBoard::now_clocks() {
   return clock_total_;
 }
 
-std::uint64_t QemuBoard::now_us() { return now_clocks() / kClocksPerUs; }
+std::uint64_t QemuBoard::now_us() {
+  // the clock less the dropped ticks' time (the file comment of qemu_board.hpp: a stall of QEMU
+  // is not a silence of the host), read together with the interrupts masked; a drop counted
+  // after an earlier read can take back time that read already gave, so the clock holds its
+  // last value until it passes it again (monotonic, as the watchdog needs)
+  const IrqLock lock;
+  const std::uint64_t us = (now_clocks() - dropped_clocks_) / kClocksPerUs;
+  if (us > last_us_) last_us_ = us;
+  return last_us_;
+}
 
 // ---- the link -----------------------------------------------------------------------------------
 

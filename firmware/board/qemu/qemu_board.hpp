@@ -16,6 +16,11 @@
 //                counts them as control overruns).
 //   clock        CMSDK timer 1 free-running over its whole 32-bit range at 25 MHz, extended to
 //                64 bits in software (read at least every tick, far within its 171.8 s wrap).
+//                now_us() (the heartbeat watchdog's clock) leaves out the time of the ticks
+//                dropped from the backlog: QEMU's timers follow host time even while the host
+//                does not schedule QEMU, and a stall of the emulated MCU is not a silence of the
+//                host (whose bytes wait in the chardev meanwhile). A host that is really gone is
+//                timed as on hardware: QEMU runs on, no tick is dropped, the clock is host time.
 //   sensors      a plant on the target (FloatPlant): sensors() before the core's tick, step()
 //                with the voltage the core returned after it.
 //   calibration  a RAM block standing in for flash: commit writes it, boot reads it. It starts
@@ -41,8 +46,9 @@ class QemuBoard {
   /// QEMU's exit status when the host asks for the bootloader.
   static constexpr int kBootloaderExitCode = 42;
   /// The stream rate the emulated UART carries with margin, all 11 channels (firmware/README.md:
-  /// measured about 215 KB/s; 2 kHz is 50 KB/s).
-  static constexpr std::uint32_t kMaxStreamRate_Hz = 2000;
+  /// measured about 215 KB/s; 1 kHz is 25 KB/s), and whose 1024-sample stream backlog covers a
+  /// 1 s stall of the reading host or of QEMU on a loaded machine.
+  static constexpr std::uint32_t kMaxStreamRate_Hz = 1000;
   /// Received bytes buffered between the UART interrupt and the main loop.
   static constexpr std::size_t kRxRing = 1024;
   /// Catch-up: late ticks run per tick interrupt at most, and the longest backlog kept.
@@ -86,6 +92,8 @@ class QemuBoard {
   std::uint64_t backlog_ = 0;       // ticks due and not run yet
   std::uint64_t max_backlog_ = 0;   // kMaxBacklog_s in ticks at the current rate
   std::uint32_t missed_ticks_ = 0;  // dropped from the backlog, not yet reported
+  std::uint64_t dropped_clocks_ = 0;  // the dropped ticks' time, left out of now_us()
+  std::uint64_t last_us_ = 0;         // now_us()'s last value (it never runs backwards)
   float dt_s_ = 0.0f;
 
   std::uint64_t clock_total_ = 0;     // clocks since boot, at clock_last_
