@@ -16,8 +16,9 @@
 // Life: idle --load--> loaded --start--> running --(end)--> finished --start--> running ...
 // A finished program stays loaded and can be started again. Time is the control tick index:
 // start(now) then step(now) in the same tick gives the program's tick 0; step() must then be
-// called with consecutive tick indices (a skipped tick is a control overrun, which the
-// controller turns into a fault and abort_fault()).
+// called with consecutive tick indices. The controller's tick index counts only ticks that ran:
+// a tick the board could not run (TickInputs::missed_ticks) is counted in
+// Health.control_overruns and shifts the program's device time, not its steps.
 //
 // Set-point when no program runs ("rest" current): 0 A, except after a contact watch ended with
 // ProgramEnd::contact, which keeps hold_current_A on (the probe stays in contact while the robot
