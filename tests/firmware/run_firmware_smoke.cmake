@@ -8,7 +8,12 @@
 #   - an EnterBootloader request then ends QEMU with the board's exit status 42.
 #
 #   cmake -DIMAGE=<elf> -DPALPCTL=<palpctl> -DWORK_DIR=<dir> -DEXPECT_MAX_RATE_HZ=<n>
-#         [-DHINT=<text>] -P run_firmware_smoke.cmake
+#         [-DLINK=tcp|pty] [-DHINT=<text>] -P run_firmware_smoke.cmake
+#
+# LINK=pty (a UART board's path: the SDK's serial:// over a tty) gives UART0 to a pseudo-terminal
+# (`-serial pty`, whose name QEMU prints) and connects with serial:///dev/pts/N?baud=4000000 (a
+# pty ignores the baud; the SDK budgets a stream by it, and 1 kHz of every channel needs more
+# than 115200 baud carries); the bootloader request is written to the pty.
 #
 # QEMU runs with the command line of firmware/README.md on a free port (a random one, retried
 # when it is taken), every step under `timeout`, so a hang fails instead of waiting forever; QEMU
@@ -41,10 +46,49 @@ if(NOT EXISTS "${PALPCTL}")
 endif()
 file(MAKE_DIRECTORY "${WORK_DIR}")
 set(qemu_log "${WORK_DIR}/qemu.log")
+if(NOT DEFINED LINK)
+  set(LINK tcp)
+endif()
+if(NOT LINK MATCHES "^(tcp|pty)$")
+  message(FATAL_ERROR "run_firmware_smoke.cmake: LINK must be tcp or pty, not '${LINK}'")
+endif()
+
+# ---- QEMU on a pseudo-terminal ------------------------------------------------------------------
+set(qemu_pid "")
+if(LINK STREQUAL "pty")
+  file(REMOVE "${WORK_DIR}/qemu.pid" "${WORK_DIR}/qemu.rc" "${qemu_log}")
+  execute_process(
+    COMMAND sh -c "( \"$0\" 120 \"$1\" -M mps2-an386 -display none -monitor none -semihosting-config enable=on,target=native -serial pty -kernel \"$2\" >\"$3\" 2>&1 </dev/null & echo $! >\"$4.pid\"; wait $!; echo $? >\"$4.rc\" ) >/dev/null 2>&1 &"
+            "${TIMEOUT}" "${QEMU}" "${IMAGE}" "${qemu_log}" "${WORK_DIR}/qemu")
+  set(tty "")
+  foreach(wait RANGE 1 100)
+    execute_process(COMMAND sleep 0.1)
+    if(EXISTS "${qemu_log}")
+      file(READ "${qemu_log}" log)
+      if(log MATCHES "char device redirected to (/dev/pts/[0-9]+)")
+        set(tty "${CMAKE_MATCH_1}")
+        break()
+      endif()
+    endif()
+  endforeach()
+  if(EXISTS "${WORK_DIR}/qemu.pid")
+    file(READ "${WORK_DIR}/qemu.pid" qemu_pid)
+    string(STRIP "${qemu_pid}" qemu_pid)
+  endif()
+  if(tty STREQUAL "" OR qemu_pid STREQUAL "")
+    if(NOT qemu_pid STREQUAL "")
+      execute_process(COMMAND kill ${qemu_pid} ERROR_QUIET)
+    endif()
+    message(FATAL_ERROR "QEMU named no pseudo-terminal within 10 s; its output: ${log}")
+  endif()
+  set(uri "serial://${tty}?baud=4000000")
+endif()
 
 # ---- QEMU on a free port ------------------------------------------------------------------------
-set(qemu_pid "")
 foreach(attempt RANGE 1 8)
+  if(LINK STREQUAL "pty")
+    break()
+  endif()
   string(RANDOM LENGTH 4 ALPHABET 0123456789 r)
   math(EXPR port "20000 + (1${r} - 10000) * 4")  # the 1 keeps a leading 0 from reading as octal
   # backgrounded by sh with its output in a file, so execute_process returns at once; a subshell
@@ -77,7 +121,9 @@ endforeach()
 if(qemu_pid STREQUAL "")
   message(FATAL_ERROR "QEMU did not start on any of 8 ports; its last words: ${log}")
 endif()
-set(uri "tcp://127.0.0.1:${port}")
+if(LINK STREQUAL "tcp")
+  set(uri "tcp://127.0.0.1:${port}")
+endif()
 message(STATUS "QEMU (pid ${qemu_pid}) serves the image on ${uri}")
 
 set(failure "")
@@ -173,9 +219,17 @@ elseif(failure STREQUAL "")
   # payload 42 4f 4f 54, CRC-32 e8 7d 22 d9, COBS-encoded with its 00 delimiter (SPEC.md §4;
   # made like the EnterBootloader vector of protocol/vectors/messages.txt)
   set(frame "\\x04\\x01\\x01\\x04\\x02\\x07\\x02\\x04\\x09\\x42\\x4f\\x4f\\x54\\xd9\\x22\\x7d\\xe8\\x00")
-  execute_process(COMMAND ${TIMEOUT} 10 bash -c "exec 3<>/dev/tcp/127.0.0.1/$0 && printf \"$1\" >&3 && cat <&3 >/dev/null"
-                          ${port} ${frame}
-                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(LINK STREQUAL "pty")
+    # the tty raw (no tab expansion of the frame's 0x09) and held open 2 s: QEMU reads a pty only
+    # while a slave is open, and notices one within a second
+    execute_process(COMMAND ${TIMEOUT} 10 bash -c "exec 3<>\"$0\" && stty raw -echo <&3 && printf \"$1\" >&3 && sleep 2"
+                            ${tty} ${frame}
+                    RESULT_VARIABLE rc ERROR_VARIABLE err)
+  else()
+    execute_process(COMMAND ${TIMEOUT} 10 bash -c "exec 3<>/dev/tcp/127.0.0.1/$0 && printf \"$1\" >&3 && cat <&3 >/dev/null"
+                            ${port} ${frame}
+                    RESULT_VARIABLE rc ERROR_VARIABLE err)
+  endif()
   set(status "")
   foreach(wait RANGE 1 50)
     if(EXISTS "${WORK_DIR}/qemu.rc")
