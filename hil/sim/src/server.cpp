@@ -96,6 +96,7 @@ void Server::step() {
   const auto heartbeat = std::chrono::milliseconds(sim.controller().params().heartbeat_timeout_ms);
   const bool silent = now - host_heard_ > heartbeat;
   const bool stall = backed_up && !silent;
+  stalled_ = stall;
   lost_ = !any_client || (backed_up && silent);
   const double pace = lost_ ? 1.0 : pace_;
   if (ev.connected || pace != pace_at_sync_ || sim.controller().control_rate_Hz() != rate_at_sync_)

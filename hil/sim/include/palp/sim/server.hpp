@@ -78,6 +78,9 @@ class Server final : public Serving {
   /// True while no client is connected, or the device client has neither drained nor sent a
   /// byte for longer than the heartbeat timeout: virtual time runs at real time.
   bool host_lost() const { return lost_; }
+  /// True when the last step() stood still for a host that is alive but does not drain: the
+  /// device bytes waiting reached kStallBytes (the sockets' buffers full), and virtual time stands.
+  bool host_stalled() const { return stalled_; }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -101,6 +104,7 @@ class Server final : public Serving {
   Clock::time_point host_heard_ = t0_;      // the device client's last bytes (or its connect)
   std::uint64_t last_tick_us_ = 0;          // wall_us() of the last step that ran a tick
   bool lost_ = true;
+  bool stalled_ = false;
   std::uint64_t dropped_frames_ = 0;
   std::uint64_t last_robot_poll_us_ = 0;
   std::string control_line_;
