@@ -1,0 +1,72 @@
+// RCC: the registers the clock init uses. Base address: stm32g474-facts.md §2; register offsets
+// and fields: §3.1 (RCC_CR, RCC_CFGR, RCC_PLLCFGR, RCC_CCIPR, RCC_CRRCR, enable registers);
+// APB1ENR1.PWREN/CRSEN: §2 (bus / RCC enable column).
+#pragma once
+
+#include "register.hpp"
+
+namespace palp::stm32::rcc {
+
+inline constexpr std::uint32_t kBase = 0x4002'1000;  // facts §2
+
+struct Cr {  // facts §3.1 RCC_CR (0x00)
+  static constexpr Field HSION{"HSION", 8, 1};
+  static constexpr Field HSIRDY{"HSIRDY", 10, 1};
+  static constexpr Field PLLON{"PLLON", 24, 1};
+  static constexpr Field PLLRDY{"PLLRDY", 25, 1};
+  static constexpr Field fields[] = {HSION, HSIRDY, PLLON, PLLRDY};
+  static constexpr Register reg{"RCC", "RCC_CR", kBase, 0x00, fields};
+};
+
+struct Cfgr {  // facts §3.1 RCC_CFGR (0x08)
+  static constexpr Field SW{"SW", 0, 2};      // 11 = PLL
+  static constexpr Field SWS{"SWS", 2, 2};    // 11 = PLL
+  static constexpr Field HPRE{"HPRE", 4, 4};  // 0000 = /1, 1000 = /2
+  static constexpr Field PPRE1{"PPRE1", 8, 3};
+  static constexpr Field PPRE2{"PPRE2", 11, 3};
+  static constexpr Field fields[] = {SW, SWS, HPRE, PPRE1, PPRE2};
+  static constexpr Register reg{"RCC", "RCC_CFGR", kBase, 0x08, fields};
+
+  static constexpr std::uint32_t kSwHsi16 = 0b01;
+  static constexpr std::uint32_t kSwPll = 0b11;
+  static constexpr std::uint32_t kHpreDiv1 = 0b0000;
+  static constexpr std::uint32_t kHpreDiv2 = 0b1000;
+};
+
+struct Pllcfgr {  // facts §3.1 RCC_PLLCFGR (0x0C)
+  static constexpr Field PLLSRC{"PLLSRC", 0, 2};  // 10 = HSI16
+  static constexpr Field PLLM{"PLLM", 4, 4};      // M - 1
+  static constexpr Field PLLN{"PLLN", 8, 7};      // N (8..127)
+  static constexpr Field PLLPEN{"PLLPEN", 16, 1};
+  static constexpr Field PLLQEN{"PLLQEN", 20, 1};
+  static constexpr Field PLLREN{"PLLREN", 24, 1};
+  static constexpr Field PLLR{"PLLR", 25, 2};  // 00 = /2, 01 = /4, 10 = /6, 11 = /8
+  static constexpr Field fields[] = {PLLSRC, PLLM, PLLN, PLLPEN, PLLQEN, PLLREN, PLLR};
+  static constexpr Register reg{"RCC", "RCC_PLLCFGR", kBase, 0x0C, fields};
+
+  static constexpr std::uint32_t kSrcHsi16 = 0b10;
+};
+
+struct Apb1enr1 {  // facts §3.1 enable registers (0x58); bits: §2
+  static constexpr Field CRSEN{"CRSEN", 8, 1};
+  static constexpr Field PWREN{"PWREN", 28, 1};
+  static constexpr Field fields[] = {CRSEN, PWREN};
+  static constexpr Register reg{"RCC", "RCC_APB1ENR1", kBase, 0x58, fields};
+};
+
+struct Ccipr {  // facts §3.1 RCC_CCIPR (0x88)
+  static constexpr Field CLK48SEL{"CLK48SEL", 26, 2};  // 00 = HSI48 (reset), 10 = PLL "Q"
+  static constexpr Field fields[] = {CLK48SEL};
+  static constexpr Register reg{"RCC", "RCC_CCIPR", kBase, 0x88, fields};
+
+  static constexpr std::uint32_t kClk48Hsi48 = 0b00;
+};
+
+struct Crrcr {  // facts §3.1 RCC_CRRCR (0x98)
+  static constexpr Field HSI48ON{"HSI48ON", 0, 1};
+  static constexpr Field HSI48RDY{"HSI48RDY", 1, 1};
+  static constexpr Field fields[] = {HSI48ON, HSI48RDY};
+  static constexpr Register reg{"RCC", "RCC_CRRCR", kBase, 0x98, fields};
+};
+
+}  // namespace palp::stm32::rcc
