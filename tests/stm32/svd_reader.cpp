@@ -8,6 +8,7 @@ namespace {
 
 constexpr std::size_t kMaxInput = 64u << 20;
 constexpr std::size_t kMaxElements = 200'000;  // peripherals + registers + fields
+constexpr std::uint32_t kMaxIrq = 239;         // ARMv7-M: at most 240 external interrupts
 
 // The element blocks <tag …>…</tag> directly findable in `text`, in order. "<field>" does not
 // match "<fields>": the character after the tag name must be '>' or a space.
@@ -150,6 +151,42 @@ bool parse_register(std::string_view block, SvdRegister& reg, std::string& error
   return true;
 }
 
+// Adds the <interrupt> elements of one peripheral block to `device.interrupts` (sorted, once).
+bool parse_interrupts(std::string_view block, const std::string& peripheral, Device& device,
+                      std::string& error) {
+  std::vector<std::string_view> interrupts;
+  if (!blocks(block, "interrupt", interrupts, error)) {
+    return false;
+  }
+  for (const std::string_view i : interrupts) {
+    const auto name = child(i, "name");
+    const auto value = number(child(i, "value"));
+    if (!name || name->empty() || !value) {
+      error = peripheral + ": an <interrupt> without <name> or a numeric <value>";
+      return false;
+    }
+    if (*value > kMaxIrq) {
+      error = peripheral + ": interrupt " + std::string(*name) + " has number " +
+              std::to_string(*value) + ", above " + std::to_string(kMaxIrq);
+      return false;
+    }
+    auto at = device.interrupts.begin();
+    while (at != device.interrupts.end() && at->number < *value) {
+      ++at;
+    }
+    if (at != device.interrupts.end() && at->number == *value) {
+      if (at->name != *name) {
+        error = peripheral + ": interrupt " + std::to_string(*value) + " named both " + at->name +
+                " and " + std::string(*name);
+        return false;
+      }
+      continue;
+    }
+    device.interrupts.insert(at, SvdInterrupt{std::string(*name), *value});
+  }
+  return true;
+}
+
 std::string hex(std::uint32_t value, int digits) {
   char text[16];
   std::snprintf(text, sizeof text, "0x%0*X", digits, static_cast<unsigned>(value));
@@ -207,6 +244,9 @@ std::optional<Device> parse(std::string_view xml, std::string& error) {
     }
     p.name = std::string(*name);
     p.base = *base;
+    if (!parse_interrupts(top, p.name, device, error)) {
+      return std::nullopt;
+    }
     std::vector<std::string_view> registers;
     if (!blocks(block, "register", registers, error)) {
       return std::nullopt;
@@ -298,6 +338,38 @@ std::vector<std::string> check(const Device& device, const Register& reg) {
                            std::to_string(field.width) + " in regs/, bit " +
                            std::to_string(svd_field->position) + " width " +
                            std::to_string(svd_field->width) + " in the SVD");
+    }
+  }
+  return mismatches;
+}
+
+std::vector<std::string> check_interrupts(const Device& device,
+                                          const std::vector<TableEntry>& table) {
+  std::vector<std::string> mismatches;
+  const auto quoted = [](std::string_view name) { return "'" + std::string(name) + "'"; };
+  for (const TableEntry& entry : table) {
+    const SvdInterrupt* found = nullptr;
+    for (const SvdInterrupt& i : device.interrupts) {
+      if (i.number == entry.number) {
+        found = &i;
+      }
+    }
+    if (found == nullptr) {
+      mismatches.push_back("IRQ " + std::to_string(entry.number) + ": " + quoted(entry.name) +
+                           " in the vector table, none in the SVD");
+    } else if (found->name != entry.name) {
+      mismatches.push_back("IRQ " + std::to_string(entry.number) + ": " + quoted(entry.name) +
+                           " in the vector table, " + quoted(found->name) + " in the SVD");
+    }
+  }
+  for (const SvdInterrupt& i : device.interrupts) {
+    bool listed = false;
+    for (const TableEntry& entry : table) {
+      listed = listed || entry.number == i.number;
+    }
+    if (!listed) {
+      mismatches.push_back("IRQ " + std::to_string(i.number) + ": none in the vector table, " +
+                           quoted(i.name) + " in the SVD");
     }
   }
   return mismatches;

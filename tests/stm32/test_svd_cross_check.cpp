@@ -8,23 +8,12 @@
 
 #include "regs/all.hpp"
 #include "svd_reader.hpp"
+#include "vendored_svd.hpp"
 
 namespace palp::stm32 {
 namespace {
 
 using Lines = std::vector<std::string>;
-
-const svd::Device& vendored_svd() {
-  static const svd::Device device = [] {
-    std::string error;
-    const std::string xml = svd::read_xz(PALP_STM32G474_SVD, error);
-    EXPECT_TRUE(error.empty()) << error;
-    auto parsed = svd::parse(xml, error);
-    EXPECT_TRUE(parsed.has_value()) << error;
-    return parsed.value_or(svd::Device{});
-  }();
-  return device;
-}
 
 TEST(Stm32SvdReader, ReadsTheWholeVendoredSvd) {
   // The counts Python's xml.etree finds in the same file: 83 peripherals (29 derivedFrom),
