@@ -69,4 +69,10 @@ struct Crrcr {  // facts §3.1 RCC_CRRCR (0x98)
   static constexpr Register reg{"RCC", "RCC_CRRCR", kBase, 0x98, fields};
 };
 
+struct Ahb2enr {  // facts §3.1 enable registers (0x4C); bits: §2 (GPIOxEN bits 0..6)
+  static constexpr Field GPIOAEN{"GPIOAEN", 0, 1};
+  static constexpr Field fields[] = {GPIOAEN};
+  static constexpr Register reg{"RCC", "RCC_AHB2ENR", kBase, 0x4C, fields};
+};
+
 }  // namespace palp::stm32::rcc

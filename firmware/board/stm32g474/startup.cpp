@@ -1,0 +1,82 @@
+// Reset handler for the STM32G474 (Cortex-M4F): FPU, VTOR, memory set-up, constructors, clocks,
+// then main(). The vector table is vectors.cpp's; the symbols are stm32g474.ld's.
+//
+// This file must be compiled with -fno-tree-loop-distribute-patterns (firmware/CMakeLists.txt):
+// otherwise GCC turns the copy and zero loops below into memcpy/memset calls.
+//
+// System control registers (ARMv7-M Architecture Reference Manual, ARM DDI 0403E):
+//   B3.2.5  VTOR  0xE000ED08, the vector table's address (bits [31:7]; 128-word aligned here).
+//   B3.2.20 CPACR 0xE000ED88, CP10 [21:20] and CP11 [23:22] = 0b11: full FPU access; then DSB, ISB.
+#include <cstdint>
+
+#include "clock.hpp"
+#include "startup.hpp"
+
+int main();
+
+extern "C" {
+extern std::uint32_t __data_start[];
+extern std::uint32_t __data_end[];
+extern const std::uint32_t __data_load[];
+extern std::uint32_t __bss_start[];
+extern std::uint32_t __bss_end[];
+extern std::uint32_t __ccmram_start[];
+extern std::uint32_t __ccmram_end[];
+extern const std::uint32_t __ccmram_load[];
+extern std::uint32_t __ccmram_bss_start[];
+extern std::uint32_t __ccmram_bss_end[];
+extern void (*const __init_array_start[])();
+extern void (*const __init_array_end[])();
+extern const std::uint32_t palp_vector_table[];  // vectors.cpp
+
+[[noreturn]] void palp_reset_handler();
+}
+
+namespace {
+
+constexpr std::uintptr_t kVtor = 0xE000ED08u;
+constexpr std::uintptr_t kCpacr = 0xE000ED88u;
+constexpr std::uint32_t kCpacrCp10Cp11Full = 0xFu << 20;
+
+volatile std::uint32_t& word(std::uintptr_t address) {
+  return *reinterpret_cast<volatile std::uint32_t*>(address);
+}
+
+void copy(std::uint32_t* dst, std::uint32_t* end, const std::uint32_t* src) {
+  while (dst < end) *dst++ = *src++;
+}
+
+void zero(std::uint32_t* dst, std::uint32_t* end) {
+  while (dst < end) *dst++ = 0;
+}
+
+// Zeroed with .bss (Status::ok is 0), then set by the reset handler after the clock init.
+palp::stm32::clock::Status g_clock_status = palp::stm32::clock::Status::ok;
+
+}  // namespace
+
+palp::stm32::clock::Status palp::stm32::startup::clock_status() { return g_clock_status; }
+
+void palp_reset_handler() {
+  // The FPU first: compiled code may use the VFP registers anywhere.
+  word(kCpacr) = word(kCpacr) | kCpacrCp10Cp11Full;
+  // The table in flash, wherever the boot mode mapped it (0x0 alias or 0x08000000).
+  word(kVtor) = static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(palp_vector_table));
+  asm volatile("dsb\n isb" ::: "memory");
+
+  copy(__data_start, __data_end, __data_load);
+  copy(__ccmram_start, __ccmram_end, __ccmram_load);  // .ccmram_text and .ccmram_data
+  zero(__bss_start, __bss_end);
+  zero(__ccmram_bss_start, __ccmram_bss_end);
+
+  for (auto* ctor = __init_array_start; ctor < __init_array_end; ++ctor) (*ctor)();
+
+  // 170 MHz + HSI48/CRS. A failure is not fatal here: the status is kept for the application
+  // to report (startup.hpp), and main() runs on the clock the failed step left.
+  g_clock_status = palp::stm32::clock::init_target();
+
+  main();
+  while (true) {  // main() does not return on the target; if it does, stop here.
+    asm volatile("" ::: "memory");
+  }
+}
