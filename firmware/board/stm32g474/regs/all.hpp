@@ -5,8 +5,10 @@
 #include "crs.hpp"
 #include "flash.hpp"
 #include "gpio.hpp"
+#include "iwdg.hpp"
 #include "pwr.hpp"
 #include "rcc.hpp"
+#include "tim.hpp"
 
 namespace palp::stm32 {
 
@@ -15,6 +17,12 @@ inline constexpr const Register* kAllRegisters[] = {
     &rcc::Ccipr::reg, &rcc::Crrcr::reg, &flash::Acr::reg,   &pwr::Cr1::reg,
     &pwr::Cr5::reg,  &crs::Cr::reg,    &crs::Cfgr::reg,   &rcc::Ahb2enr::reg,
     &gpio::ModerA::reg, &gpio::BsrrA::reg,
+    // Timers and watchdog (timers.hpp).
+    &rcc::Apb2enr::reg, &tim1::Cr1::reg, &tim1::Cr2::reg, &tim1::Ccmr1::reg, &tim1::Ccmr2::reg,
+    &tim1::Ccer::reg, &tim1::Psc::reg, &tim1::Arr::reg, &tim1::Rcr::reg, &tim1::Ccr1::reg,
+    &tim1::Ccr2::reg, &tim1::Ccr4::reg, &tim1::Bdtr::reg, &tim1::Egr::reg, &tim2::Cr1::reg,
+    &tim2::Smcr::reg, &tim2::Ccmr1::reg, &tim2::Ccer::reg, &tim2::Cnt::reg, &tim2::Arr::reg,
+    &tim2::Egr::reg, &iwdg::Kr::reg, &iwdg::Pr::reg, &iwdg::Rlr::reg, &iwdg::Sr::reg,
 };
 
 }  // namespace palp::stm32

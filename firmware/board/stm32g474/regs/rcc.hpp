@@ -50,7 +50,8 @@ struct Pllcfgr {  // facts §3.1 RCC_PLLCFGR (0x0C)
 struct Apb1enr1 {  // facts §3.1 enable registers (0x58); bits: §2
   static constexpr Field CRSEN{"CRSEN", 8, 1};
   static constexpr Field PWREN{"PWREN", 28, 1};
-  static constexpr Field fields[] = {CRSEN, PWREN};
+  static constexpr Field TIM2EN{"TIM2EN", 0, 1};  // facts §2 (TIM2 row)
+  static constexpr Field fields[] = {CRSEN, PWREN, TIM2EN};
   static constexpr Register reg{"RCC", "RCC_APB1ENR1", kBase, 0x58, fields};
 };
 
@@ -73,6 +74,12 @@ struct Ahb2enr {  // facts §3.1 enable registers (0x4C); bits: §2 (GPIOxEN bit
   static constexpr Field GPIOAEN{"GPIOAEN", 0, 1};
   static constexpr Field fields[] = {GPIOAEN};
   static constexpr Register reg{"RCC", "RCC_AHB2ENR", kBase, 0x4C, fields};
+};
+
+struct Apb2enr {  // facts §3.1 enable registers (0x60); TIM1EN: §2 (TIM1 row)
+  static constexpr Field TIM1EN{"TIM1EN", 11, 1};
+  static constexpr Field fields[] = {TIM1EN};
+  static constexpr Register reg{"RCC", "RCC_APB2ENR", kBase, 0x60, fields};
 };
 
 }  // namespace palp::stm32::rcc
