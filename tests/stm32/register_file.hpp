@@ -55,6 +55,8 @@ class RegisterFile {
     const auto it = words_.find(reg.address());
     return it == words_.end() ? 0 : it->second;
   }
+  /// Sets a register's word as the hardware would (no write logged, no reaction).
+  void poke(const Register& reg, std::uint32_t value) { words_[reg.address()] = value; }
   const std::vector<Write>& log() const { return log_; }
   std::uint64_t reads() const { return reads_; }
   /// Off: no ready flag ever rises (a board whose PLL or HSI48 does not start).

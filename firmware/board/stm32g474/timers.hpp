@@ -108,20 +108,22 @@ struct BridgeDuty {
 };
 
 /// The compare values for `v_coil_V` on a bridge fed with `supply_V` (README §2, §4):
-/// duty_A = 1/2 + v / (2 supply), duty_B = 1/2 - v / (2 supply), CCR = round(duty x ARR).
+/// duty_A = 1/2 + v / (2 supply), duty_B = 1/2 - v / (2 supply). The difference CCR1 - CCR2 =
+/// round(v / supply x ARR) is exact (the mean coil voltage is quantised to supply / ARR: 5.6 mV
+/// at 20 kHz, 11.3 mV at 40 kHz) and the two are centred on ARR / 2 within half a count, so 0 V
+/// is CCR1 = CCR2 also when ARR is odd (40 kHz: 2125 -> 1062/1062).
 /// Sign: +v puts leg A above leg B, current OUTA -> coil + -> OUTB, force toward +z.
 /// |v| is clamped to the supply (+supply: A 100 %, B 0 %); NaN, or a supply that is not a
-/// positive number, gives 0 V (both legs 50 %: no mean voltage across the coil).
+/// positive number, gives 0 V (both legs at 50 %: no mean voltage across the coil).
 inline BridgeDuty duty_for_voltage(float v_coil_V, float supply_V, std::uint32_t arr) {
   float ratio = 0.0f;  // v / supply in [-1, 1]
   if (!std::isnan(v_coil_V) && supply_V > 0.0f && std::isfinite(supply_V)) {
     ratio = std::fmax(-1.0f, std::fmin(1.0f, v_coil_V / supply_V));
   }
-  const float arr_f = static_cast<float>(arr);
-  const auto ccr = [arr_f](float duty) {
-    return static_cast<std::uint32_t>(std::lround(std::fmin(arr_f, std::fmax(0.0f, duty * arr_f))));
-  };
-  return {ccr(0.5f + 0.5f * ratio), ccr(0.5f - 0.5f * ratio)};
+  const auto arr_signed = static_cast<std::int32_t>(arr);
+  const auto diff = static_cast<std::int32_t>(std::lround(ratio * static_cast<float>(arr)));
+  const std::int32_t ccr1 = (arr_signed + diff) / 2;  // arr + diff >= 0: floor
+  return {static_cast<std::uint32_t>(ccr1), static_cast<std::uint32_t>(ccr1 - diff)};
 }
 
 /// Writes the bridge duty for `v_coil_V` (preloaded: takes effect at the next update event).
