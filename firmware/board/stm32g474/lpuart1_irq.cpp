@@ -1,0 +1,16 @@
+// The target's host link object and its interrupt handler (link_uart.hpp). The handler replaces
+// vectors.cpp's weak default of the same name (vectors_list.hpp: IRQ 91 `LPUART`).
+#include "link_uart.hpp"
+
+namespace palp::stm32::link_uart {
+namespace {
+Mmio g_mmio;
+constinit HostLink g_link{g_mmio};
+}  // namespace
+
+HostLink& host_link() { return g_link; }
+
+}  // namespace palp::stm32::link_uart
+
+void LPUART_IRQHandler();  // declared (weak) in vectors.cpp; this is the strong definition
+void LPUART_IRQHandler() { palp::stm32::link_uart::host_link().on_irq(); }
