@@ -54,8 +54,8 @@ static_assert(kStreamRateHz == 3840);
 template <RegisterAccess A>
 void init(A& io) {
   write_field(io, rcc::Apb1enr2::reg, rcc::Apb1enr2::LPUART1EN, 1);
-  write_field(io, rcc::CciprLpuart1::reg, rcc::CciprLpuart1::LPUART1SEL,
-              rcc::CciprLpuart1::kPclk);
+  write_field(io, rcc::Ccipr::reg, rcc::Ccipr::LPUART1SEL,
+              rcc::Ccipr::kLpuart1Pclk);
   io.write(lpuart1::Cr1::reg.address(), 0);  // UE = 0: the configuration registers are writable
   io.write(lpuart1::Presc::reg.address(), lpuart1::Presc::PRESCALER.encode(kPrescaler));
   io.write(lpuart1::Brr::reg.address(), lpuart1::Brr::BRR.encode(kBrr));

@@ -25,7 +25,7 @@ inline constexpr const Register* kAllRegisters[] = {
     &tim2::Smcr::reg, &tim2::Ccmr1::reg, &tim2::Ccer::reg, &tim2::Cnt::reg, &tim2::Arr::reg,
     &tim2::Egr::reg, &iwdg::Kr::reg, &iwdg::Pr::reg, &iwdg::Rlr::reg, &iwdg::Sr::reg,
     // The host link over LPUART1 (link_uart.hpp).
-    &rcc::Apb1enr2::reg, &rcc::CciprLpuart1::reg, &lpuart1::Cr1::reg, &lpuart1::Cr2::reg,
+    &rcc::Apb1enr2::reg, &lpuart1::Cr1::reg, &lpuart1::Cr2::reg,
     &lpuart1::Cr3::reg, &lpuart1::Brr::reg, &lpuart1::Isr::reg, &lpuart1::Icr::reg,
     &lpuart1::Rdr::reg, &lpuart1::Tdr::reg, &lpuart1::Presc::reg,
 };

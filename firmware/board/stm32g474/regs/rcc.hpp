@@ -57,10 +57,14 @@ struct Apb1enr1 {  // facts §3.1 enable registers (0x58); bits: §2
 
 struct Ccipr {  // facts §3.1 RCC_CCIPR (0x88)
   static constexpr Field CLK48SEL{"CLK48SEL", 26, 2};  // 00 = HSI48 (reset), 10 = PLL "Q"
-  static constexpr Field fields[] = {CLK48SEL};
+  // LPUART1's kernel clock (link_uart.hpp); not in the facts sheet: SVD bits 11:10,
+  // 00 = PCLK, 01 = SYSCLK, 10 = HSI16, 11 = LSE.
+  static constexpr Field LPUART1SEL{"LPUART1SEL", 10, 2};
+  static constexpr Field fields[] = {CLK48SEL, LPUART1SEL};
   static constexpr Register reg{"RCC", "RCC_CCIPR", kBase, 0x88, fields};
 
   static constexpr std::uint32_t kClk48Hsi48 = 0b00;
+  static constexpr std::uint32_t kLpuart1Pclk = 0b00;
 };
 
 struct Crrcr {  // facts §3.1 RCC_CRRCR (0x98)
@@ -83,21 +87,11 @@ struct Apb2enr {  // facts §3.1 enable registers (0x60); TIM1EN: §2 (TIM1 row)
 };
 
 // LPUART1's clock (link_uart.hpp). Not in the facts sheet: offset and bits are ST's SVD
-// (RCC_APB1ENR2 0x5C, RCC_CCIPR.LPUART1SEL bits 11:10), pinned by the SVD cross-check.
+// (RCC_APB1ENR2 0x5C; RCC_CCIPR.LPUART1SEL is in Ccipr above), pinned by the SVD cross-check.
 struct Apb1enr2 {  // SVD RCC_APB1ENR2 (0x5C)
   static constexpr Field LPUART1EN{"LPUART1EN", 0, 1};
   static constexpr Field fields[] = {LPUART1EN};
   static constexpr Register reg{"RCC", "RCC_APB1ENR2", kBase, 0x5C, fields};
-};
-
-// RCC_CCIPR's LPUART1 kernel-clock select, a second view of the register Ccipr defines (so the
-// clock init's CLK48SEL list stays as it is). SVD: 00 = PCLK, 01 = SYSCLK, 10 = HSI16, 11 = LSE.
-struct CciprLpuart1 {
-  static constexpr Field LPUART1SEL{"LPUART1SEL", 10, 2};
-  static constexpr Field fields[] = {LPUART1SEL};
-  static constexpr Register reg{"RCC", "RCC_CCIPR", kBase, 0x88, fields};
-
-  static constexpr std::uint32_t kPclk = 0b00;
 };
 
 }  // namespace palp::stm32::rcc
