@@ -2,7 +2,9 @@
 // (tests/stm32). A definition added under regs/ must be added here.
 #pragma once
 
+#include "adc.hpp"
 #include "crs.hpp"
+#include "dma.hpp"
 #include "flash.hpp"
 #include "gpio.hpp"
 #include "iwdg.hpp"
@@ -28,6 +30,12 @@ inline constexpr const Register* kAllRegisters[] = {
     &rcc::Apb1enr2::reg, &lpuart1::Cr1::reg, &lpuart1::Cr2::reg,
     &lpuart1::Cr3::reg, &lpuart1::Brr::reg, &lpuart1::Isr::reg, &lpuart1::Icr::reg,
     &lpuart1::Rdr::reg, &lpuart1::Tdr::reg, &lpuart1::Presc::reg,
+    // ADC1 injected + ADC2 regular scan with DMA (adc.hpp).
+    &rcc::Ahb1enr::reg, &adc::Isr::adc1, &adc::Isr::adc2, &adc::Ier::adc1,
+    &adc::Cr::adc1, &adc::Cr::adc2, &adc::Cfgr::adc1, &adc::Cfgr::adc2, &adc::Smpr1::adc2,
+    &adc::Smpr2::adc1, &adc::Sqr1::adc2, &adc::Sqr2::adc2, &adc::Dr::adc2, &adc::Jsqr::adc1,
+    &adc::Jdr1::adc1, &adc::Jdr2::adc1, &adc::Ccr::reg, &dma::Ccr1::reg, &dma::Cndtr1::reg,
+    &dma::Cpar1::reg, &dma::Cmar1::reg, &dma::Dmamux0::reg,
 };
 
 }  // namespace palp::stm32

@@ -76,7 +76,8 @@ struct Crrcr {  // facts §3.1 RCC_CRRCR (0x98)
 
 struct Ahb2enr {  // facts §3.1 enable registers (0x4C); bits: §2 (GPIOxEN bits 0..6)
   static constexpr Field GPIOAEN{"GPIOAEN", 0, 1};
-  static constexpr Field fields[] = {GPIOAEN};
+  static constexpr Field ADC12EN{"ADC12EN", 13, 1};  // facts §2: one bit for ADC1 + ADC2
+  static constexpr Field fields[] = {GPIOAEN, ADC12EN};
   static constexpr Register reg{"RCC", "RCC_AHB2ENR", kBase, 0x4C, fields};
 };
 
@@ -92,6 +93,14 @@ struct Apb1enr2 {  // SVD RCC_APB1ENR2 (0x5C)
   static constexpr Field LPUART1EN{"LPUART1EN", 0, 1};
   static constexpr Field fields[] = {LPUART1EN};
   static constexpr Register reg{"RCC", "RCC_APB1ENR2", kBase, 0x5C, fields};
+};
+
+// DMA clocks (adc.hpp). AHB1ENR: facts §3.1 (0x48), bits §2 (DMA1 / DMAMUX1 rows).
+struct Ahb1enr {
+  static constexpr Field DMA1EN{"DMA1EN", 0, 1};
+  static constexpr Field DMAMUX1EN{"DMAMUX1EN", 2, 1};
+  static constexpr Field fields[] = {DMA1EN, DMAMUX1EN};
+  static constexpr Register reg{"RCC", "RCC_AHB1ENR", kBase, 0x48, fields};
 };
 
 }  // namespace palp::stm32::rcc
