@@ -1,5 +1,5 @@
-// The analog front end of the STM32G474 board (README §2, §3, §5): ADC1's injected group takes the
-// coil current (PB1, ADC1_IN12) and then the bridge supply (PB12, ADC1_IN11) on TIM1 TRGO2, the
+// The analog front end of the STM32G474 board (README §2, §3, §5): ADC1's injected group takes
+// the coil current (PB1, ADC1_IN12) and then the bridge supply (PB12, ADC1_IN11) on TIM1 TRGO2, the
 // instant one timer clock before the PWM counter's top (timers.hpp); its end-of-sequence
 // interrupt (ADC1_2, IRQ 18; facts §2) runs the control tick. ADC2 scans the six pressure
 // channels as a regular sequence that the tick starts by software, and DMA1 channel 1 (DMAMUX1
@@ -54,7 +54,8 @@ inline constexpr std::uint32_t kRegulatorWaitReads = 4000;
 // ≥ 4 ADC clocks (16 HCLK cycles) between the end of calibration and ADEN (facts §4.4 step 4).
 inline constexpr std::uint32_t kCalibrationToEnableReads = 32;
 // CR bits that are written 1 only ("rs"; facts §4.4 CR write rule): ADEN, ADDIS, ADSTART,
-// JADSTART, ADSTP, JADSTP (bits 0..5) and ADCAL (31). A CR write carries 0 in all but the one meant.
+// JADSTART, ADSTP, JADSTP (bits 0..5) and ADCAL (31). A CR write carries 0 in all of them but the
+// one meant.
 inline constexpr std::uint32_t kCrRsBits = 0x3Fu | Cr::ADCAL.mask();
 
 inline constexpr std::uint32_t kPressureCount = kPressureChannels.size();

@@ -36,6 +36,12 @@ inline constexpr const Register* kAllRegisters[] = {
     &adc::Smpr2::adc1, &adc::Sqr1::adc2, &adc::Sqr2::adc2, &adc::Dr::adc2, &adc::Jsqr::adc1,
     &adc::Jdr1::adc1, &adc::Jdr2::adc1, &adc::Ccr::reg, &dma::Ccr1::reg, &dma::Cndtr1::reg,
     &dma::Cpar1::reg, &dma::Cmar1::reg, &dma::Dmamux0::reg,
+    // The pin table (pins.hpp); GPIOA's MODER is gpio::ModerA above.
+    &gpio::ModerB::reg, &gpio::ModerC::reg, &gpio::PortA::otyper, &gpio::PortA::ospeedr,
+    &gpio::PortA::pupdr, &gpio::PortA::afrl, &gpio::PortA::afrh, &gpio::PortB::otyper,
+    &gpio::PortB::ospeedr, &gpio::PortB::pupdr, &gpio::PortB::afrl, &gpio::PortB::afrh,
+    &gpio::PortC::otyper, &gpio::PortC::ospeedr, &gpio::PortC::pupdr, &gpio::PortC::afrl,
+    &gpio::PortC::afrh,
 };
 
 }  // namespace palp::stm32

@@ -1,9 +1,9 @@
 // DMA1 channel 1 and DMAMUX1 channel 0 (its request line): the ADC2 pressure scan into RAM.
 // Bases: stm32g474-facts.md §2 (DMA1 0x4002_0000, channel n registers at +0x08 + 0x14·(n−1);
 // DMAMUX1 0x4002_0800, channel CCRs from 0x00); CCR bits and the channel mapping (DMA1 channel n
-// ↔ DMAMUX1 channel n−1) and request IDs: §4.5. The CNDTR/CPAR/CMAR offsets (+0x0C/+0x10/+0x14)
-// and the SVD names (peripheral "DMAMUX", register "C0CR") are from ST's SVD; the cross-check pins
-// them.
+// ↔ DMAMUX1 channel n−1) and request IDs: §4.5. The CNDTR/CPAR/CMAR offsets (+0x0C/+0x10/
+// +0x14) and the SVD names (peripheral "DMAMUX", register "C0CR") are from ST's SVD; the
+// cross-check pins them.
 #pragma once
 
 #include "register.hpp"

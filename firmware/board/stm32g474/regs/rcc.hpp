@@ -76,8 +76,10 @@ struct Crrcr {  // facts §3.1 RCC_CRRCR (0x98)
 
 struct Ahb2enr {  // facts §3.1 enable registers (0x4C); bits: §2 (GPIOxEN bits 0..6)
   static constexpr Field GPIOAEN{"GPIOAEN", 0, 1};
+  static constexpr Field GPIOBEN{"GPIOBEN", 1, 1};
+  static constexpr Field GPIOCEN{"GPIOCEN", 2, 1};
   static constexpr Field ADC12EN{"ADC12EN", 13, 1};  // facts §2: one bit for ADC1 + ADC2
-  static constexpr Field fields[] = {GPIOAEN, ADC12EN};
+  static constexpr Field fields[] = {GPIOAEN, GPIOBEN, GPIOCEN, ADC12EN};
   static constexpr Register reg{"RCC", "RCC_AHB2ENR", kBase, 0x4C, fields};
 };
 
