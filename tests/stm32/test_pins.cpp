@@ -43,7 +43,7 @@ TEST(Stm32Pins, TheTableHasNoPinTwice) {
     EXPECT_LT(pin.number, 16u) << pin.signal;
     EXPECT_TRUE(seen.insert({pin.port, pin.number}).second) << pin.signal << " twice";
   }
-  EXPECT_EQ(seen.size(), 21u);  // README §3: 21 rows
+  EXPECT_EQ(seen.size(), 23u);  // README §3: 21 rows + PA2/PA3 for the host link
   std::array<pins::Pin, 2> twice = {pins::kPins[0], pins::kPins[0]};
   EXPECT_FALSE(pins::no_pin_twice(twice));
 }
@@ -78,6 +78,9 @@ TEST(Stm32Pins, ReadmeRowsComeBackFromTheRegisters) {
   EXPECT_EQ(bits(rf, gpio::ModerC::reg, 2 * 6, 2), 0b01u);   // PC6 contact line
   EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 5, 2), 0b01u);   // PA5 LED
   EXPECT_EQ(bits(rf, gpio::PortA::ospeedr, 2 * 8, 2), pins::kPwmSpeed);
+  EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 2, 2), 0b10u);  // PA2 LPUART1_TX, AF12
+  EXPECT_EQ(bits(rf, gpio::PortA::afrl, 4 * 2, 4), 12u);
+  EXPECT_EQ(bits(rf, gpio::PortA::pupdr, 2 * 3, 2), 0b01u);  // PA3 RX pulled up (idle high)
 }
 
 TEST(Stm32Pins, AnalogPinsAreAnalogAndCarryTheAdcChannelsPins) {
@@ -103,13 +106,15 @@ TEST(Stm32Pins, AnalogPinsAreAnalogAndCarryTheAdcChannelsPins) {
 
 TEST(Stm32Pins, PinsOutsideTheTableKeepTheirResetState) {
   const RegisterFile rf = initialised();
-  // SWD PA13/PA14 stay AF (10), PA2/PA3 (ST-LINK LPUART1) stay analog (11).
+  // SWD PA13/PA14 stay AF (10) with AF0 (AFRH reset 0); PA4, PA7 stay analog (11).
   EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 13, 2), 0b10u);
   EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 14, 2), 0b10u);
-  EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 2, 2), 0b11u);
-  EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 3, 2), 0b11u);
+  EXPECT_EQ(bits(rf, gpio::PortA::afrh, 4 * 5, 8), 0u);
+  EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 4, 2), 0b11u);
+  EXPECT_EQ(bits(rf, gpio::ModerA::reg, 2 * 7, 2), 0b11u);
   EXPECT_EQ(bits(rf, gpio::ModerB::reg, 2 * 4, 2), 0b10u);  // PB4 (UCPD / JTAG) untouched
-  EXPECT_EQ(rf.peek(gpio::PortA::afrl) & 0xFFFF'FF00u, 0u);  // only PA0/PA1 AF written in AFRL
+  // AFRL of port A: PA0/PA1 AF1, PA2/PA3 AF12 (the host link), nothing else.
+  EXPECT_EQ(rf.peek(gpio::PortA::afrl), 0x0000'CC11u);
   EXPECT_EQ(bits(rf, rcc::Ahb2enr::reg, 0, 3), 0b111u);     // GPIOA/B/C clocks
 }
 

@@ -1,7 +1,7 @@
 // The pin table of the STM32G474 board: README §3 ("The pin table"), the binding contract, as ONE
 // constexpr table, and the init that configures every pin from it (clocks of GPIOA/B/C, then per
 // pin MODER, OTYPER, OSPEEDR, PUPDR and AFRL/AFRH). Pins not in the table (SWD PA13/PA14, the
-// ST-LINK LPUART1 PA2/PA3, BOOT0, the UCPD pins) keep their reset state. GPIO register layout:
+// BOOT0, the UCPD pins) keep their reset state. GPIO register layout:
 // regs/gpio.hpp (SVD offsets, facts §2 bases); AF numbers: README §3 from facts §4.2, §4.3.
 #pragma once
 
@@ -36,8 +36,10 @@ inline constexpr std::uint32_t kPwmSpeed = 0b10;
 
 // README §3, row for row (same order). PA15 (TIM2_ETR, encoder index): its AF is "check in the
 // datasheet DS12288" in the README, so it is left an input here until that is checked; the index
-// is not used by the timers yet.
-inline constexpr std::array<Pin, 21> kPins = {{
+// is not used by the timers yet. The last two rows are the NUCLEO's own wiring the README leaves
+// alone (PA2/PA3 to the ST-LINK virtual COM port) taken as LPUART1 for the host link
+// (link_uart.hpp): AF12 is from the G474 datasheet's AF table, not the facts sheet (check DS12288).
+inline constexpr std::array<Pin, 23> kPins = {{
     {Port::a, 8, Mode::alternate, 6, Pull::none, "TIM1_CH1 leg A high side"},
     {Port::b, 13, Mode::alternate, 6, Pull::none, "TIM1_CH1N leg A low side"},
     {Port::a, 9, Mode::alternate, 6, Pull::none, "TIM1_CH2 leg B high side"},
@@ -59,6 +61,8 @@ inline constexpr std::array<Pin, 21> kPins = {{
     {Port::a, 12, Mode::analog, 0, Pull::none, "USB_DP"},
     {Port::c, 6, Mode::output, 0, Pull::none, "contact line"},
     {Port::a, 5, Mode::output, 0, Pull::none, "status LED LD2"},
+    {Port::a, 2, Mode::alternate, 12, Pull::none, "LPUART1_TX to the ST-LINK VCP"},
+    {Port::a, 3, Mode::alternate, 12, Pull::up, "LPUART1_RX from the ST-LINK VCP"},
 }};
 
 constexpr const gpio::PortRegs& port_regs(Port port) {
