@@ -4,12 +4,12 @@
 // This file must be compiled with -fno-tree-loop-distribute-patterns (firmware/CMakeLists.txt):
 // otherwise GCC turns the copy and zero loops below into memcpy/memset calls.
 //
-// System control registers (ARMv7-M Architecture Reference Manual, ARM DDI 0403E):
-//   B3.2.5  VTOR  0xE000ED08, the vector table's address (bits [31:7]; 128-word aligned here).
-//   B3.2.20 CPACR 0xE000ED88, CP10 [21:20] and CP11 [23:22] = 0b11: full FPU access; then DSB, ISB.
+// System control registers: board/cortex_m/scb.hpp (VTOR takes the table's address, bits [31:7];
+// 128-word aligned here; CPACR CP10/CP11 full access, then DSB, ISB).
 #include <cstdint>
 
 #include "clock.hpp"
+#include "scb.hpp"
 #include "startup.hpp"
 
 int main();
@@ -34,14 +34,6 @@ extern const std::uint32_t palp_vector_table[];  // vectors.cpp
 
 namespace {
 
-constexpr std::uintptr_t kVtor = 0xE000ED08u;
-constexpr std::uintptr_t kCpacr = 0xE000ED88u;
-constexpr std::uint32_t kCpacrCp10Cp11Full = 0xFu << 20;
-
-volatile std::uint32_t& word(std::uintptr_t address) {
-  return *reinterpret_cast<volatile std::uint32_t*>(address);
-}
-
 void copy(std::uint32_t* dst, std::uint32_t* end, const std::uint32_t* src) {
   while (dst < end) *dst++ = *src++;
 }
@@ -59,9 +51,10 @@ palp::stm32::clock::Status palp::stm32::startup::clock_status() { return g_clock
 
 void palp_reset_handler() {
   // The FPU first: compiled code may use the VFP registers anywhere.
-  word(kCpacr) = word(kCpacr) | kCpacrCp10Cp11Full;
+  palp::board::scb::cpacr() = palp::board::scb::cpacr() | palp::board::scb::kCpacrCp10Cp11Full;
   // The table in flash, wherever the boot mode mapped it (0x0 alias or 0x08000000).
-  word(kVtor) = static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(palp_vector_table));
+  palp::board::scb::vtor() =
+      static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(palp_vector_table));
   asm volatile("dsb\n isb" ::: "memory");
 
   copy(__data_start, __data_end, __data_load);

@@ -1,6 +1,8 @@
-// Cortex-M4 System Control Block registers used by startup.
+// Cortex-M4 System Control Block registers the boards' startup code uses (QEMU's mps2-an386 and
+// the STM32G474 alike: both are ARMv7-M cores, so one definition serves both).
 //
 // Sources:
+//   [ARM] B3.2.5 "Vector Table Offset Register, VTOR": address 0xE000ED08, TBLOFF in [31:7].
 //   [ARM] ARMv7-M Architecture Reference Manual (ARM DDI 0403E), B3.2.20 "Coprocessor Access
 //         Control Register, CPACR": address 0xE000ED88; CP10 in bits [21:20], CP11 in [23:22],
 //         0b11 = full access. Both must be enabled together for the FPU.
@@ -13,11 +15,16 @@
 
 namespace palp::board::scb {
 
+inline constexpr std::uintptr_t kVtor = 0xE000ED08u;         // [ARM] B3.2.5
 inline constexpr std::uintptr_t kCpacr = 0xE000ED88u;        // [ARM], [GUG]
 inline constexpr std::uint32_t kCpacrCp10Cp11Full = 0xFu << 20;  // [ARM], [GUG]
 
 inline volatile std::uint32_t& cpacr() {
   return *reinterpret_cast<volatile std::uint32_t*>(kCpacr);
+}
+
+inline volatile std::uint32_t& vtor() {
+  return *reinterpret_cast<volatile std::uint32_t*>(kVtor);
 }
 
 }  // namespace palp::board::scb
