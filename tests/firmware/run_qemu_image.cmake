@@ -12,27 +12,13 @@
 # A missing image, qemu-system-arm or timeout is a failure, never a skip.
 cmake_minimum_required(VERSION 3.25)
 
-if(NOT DEFINED HINT)
-  set(HINT "")
-endif()
 foreach(var IMAGE PASS_REGEX)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_qemu_image.cmake: -D${var}=... is required")
   endif()
 endforeach()
 
-find_program(QEMU qemu-system-arm)
-find_program(TIMEOUT timeout)
-if(NOT QEMU)
-  message(FATAL_ERROR "qemu-system-arm not found: run scripts/install-deps "
-                      "(or apt-get install --no-install-recommends qemu-system-arm)")
-endif()
-if(NOT TIMEOUT)
-  message(FATAL_ERROR "timeout (coreutils) not found")
-endif()
-if(NOT EXISTS "${IMAGE}")
-  message(FATAL_ERROR "firmware image ${IMAGE} does not exist: ${HINT}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/find_qemu.cmake)
 
 set(command "${TIMEOUT}" 60 "${QEMU}" -M mps2-an386 -display none -monitor none
             -semihosting-config enable=on,target=native -serial stdio -kernel "${IMAGE}")
