@@ -42,6 +42,8 @@ inline constexpr const Register* kAllRegisters[] = {
     &gpio::PortB::ospeedr, &gpio::PortB::pupdr, &gpio::PortB::afrl, &gpio::PortB::afrh,
     &gpio::PortC::otyper, &gpio::PortC::ospeedr, &gpio::PortC::pupdr, &gpio::PortC::afrl,
     &gpio::PortC::afrh,
+    // The flash controller for calibration storage (flash_driver.hpp); FLASH_ACR is above.
+    &flash::Keyr::reg, &flash::Sr::reg, &flash::Cr::reg, &flash::Eccr::reg, &flash::Optr::reg,
 };
 
 }  // namespace palp::stm32
