@@ -1,0 +1,60 @@
+// Calibration storage in flash (team contract 3; NOTES.md "Calibration in flash"): the core's
+// calibration block in an A/B journal (palp/fw/flash_journal.hpp) on the last two pages of bank 2
+// (flash_driver.hpp: slot A 0x0807_F000, slot B 0x0807_F800), never in the image's pages.
+//
+//   read(bytes, size)   the newest valid block's bytes (min(size, block length)), or `size`
+//                       bytes of 0xFF when no slot holds a valid block (the core reads "blank");
+//                       returns the bytes written. Boot: survives torn slots (ECC NMI -> slot
+//                       invalid, flash_ecc_nmi.cpp).
+//   write(bytes, size)  a whole journal commit: erase the older slot, program it, commit marker
+//                       last, read back; true once stored. It waits for the flash: about one
+//                       page erase plus 30 double-word programs for the 208-byte block (NOTES.md
+//                       gives the worst case); begin_write()/poll() do the same without waiting.
+//
+// Needs the option byte DBANK = 1 (dual bank, the factory default, facts §1.3): with DBANK = 0
+// write() returns false (dual_bank() says why) and read() still reads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "flash_driver.hpp"
+#include "palp/fw/flash_journal.hpp"
+
+namespace palp::stm32 {
+
+inline constexpr fw::JournalLayout kCalibrationJournalLayout{
+    {flash::kStorageBase, flash::kStorageBase + flash::kPageSize}};
+
+template <RegisterAccess A>
+class CalibrationFlash {
+ public:
+  using Driver = flash::FlashDriver<A>;
+  using Journal = fw::FlashJournal<Driver, flash::kPageSize>;
+
+  explicit CalibrationFlash(A& io) : driver_(io), journal_(driver_, kCalibrationJournalLayout) {}
+
+  // --- contract 3 --------------------------------------------------------------------------
+  std::size_t read(std::uint8_t* bytes, std::size_t size) { return journal_.read(bytes, size); }
+  bool write(const std::uint8_t* bytes, std::size_t size) { return journal_.commit(bytes, size); }
+
+  // --- beyond the contract -----------------------------------------------------------------
+  /// The same commit as write(), started only: call poll() from the main loop until it is
+  /// done or failed (each call at most one flash step, never waiting on the flash).
+  bool begin_write(const std::uint8_t* bytes, std::size_t size) {
+    return journal_.begin_commit(bytes, size);
+  }
+  fw::CommitState poll() { return journal_.poll(); }
+  /// Both slots' status at the last read()/commit (why a slot is not used).
+  const fw::JournalScan& last_scan() const { return journal_.last_scan(); }
+  fw::CommitError commit_error() const { return journal_.commit_error(); }
+  fw::FlashStatus flash_status() const { return journal_.flash_status(); }
+  bool dual_bank() const { return driver_.dual_bank(); }
+  std::uint32_t last_error_flags() const { return driver_.last_error_flags(); }
+
+ private:
+  Driver driver_;
+  Journal journal_;
+};
+
+}  // namespace palp::stm32
