@@ -114,6 +114,9 @@ class FlashModel {
   // --- test controls -------------------------------------------------------------------------
   std::function<void()> nmi;  // the NMI a double ECC error raises
   std::uint32_t fatal_nmis() const { return fatal_nmis_; }
+  void set_boot_from_bank2(bool on) {
+    optr_ = on ? optr_ | flash::Optr::BFB2.mask() : optr_ & ~flash::Optr::BFB2.mask();
+  }
   void set_dual_bank(bool on) {
     optr_ = on ? optr_ | flash::Optr::DBANK.mask() : optr_ & ~flash::Optr::DBANK.mask();
   }

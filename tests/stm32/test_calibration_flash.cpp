@@ -150,19 +150,26 @@ TEST(Stm32CalibrationFlash, EveryPollStartsAtMostOneFlashStepWithBoundedRegister
   EXPECT_EQ(boot(model).bytes, block);
 }
 
-TEST(Stm32CalibrationFlash, SingleBankOptionByteRefusesWritesAndStillReads) {
-  FlashModel model;
-  ASSERT_TRUE(commit(model, calibration_bytes(1)));
-  model.set_dual_bank(false);
-  model.power_on();
-  CalibrationStore store(model);
-  EXPECT_FALSE(store.dual_bank());
-  const std::vector<std::uint8_t> block = calibration_bytes(2);
-  EXPECT_FALSE(store.write(block.data(), block.size()));
-  EXPECT_EQ(store.commit_error(), fw::CommitError::flash);
-  EXPECT_EQ(store.flash_status(), fw::FlashStatus::refused);
-  EXPECT_EQ(model.operations().size(), 31u);  // nothing after the first commit
-  EXPECT_EQ(boot(model).bytes, calibration_bytes(1));
+TEST(Stm32CalibrationFlash, SingleBankOrBank2BootOptionBytesRefuseWritesAndStillRead) {
+  for (const bool single_bank : {true, false}) {
+    SCOPED_TRACE(single_bank ? "DBANK = 0" : "BFB2 = 1");
+    FlashModel model;
+    ASSERT_TRUE(commit(model, calibration_bytes(1)));
+    if (single_bank) {
+      model.set_dual_bank(false);
+    } else {
+      model.set_boot_from_bank2(true);
+    }
+    model.power_on();
+    CalibrationStore store(model);
+    EXPECT_FALSE(store.writable());
+    const std::vector<std::uint8_t> block = calibration_bytes(2);
+    EXPECT_FALSE(store.write(block.data(), block.size()));
+    EXPECT_EQ(store.commit_error(), fw::CommitError::flash);
+    EXPECT_EQ(store.flash_status(), fw::FlashStatus::refused);
+    EXPECT_EQ(model.operations().size(), 31u);  // nothing after the first commit
+    EXPECT_EQ(boot(model).bytes, calibration_bytes(1));
+  }
 }
 
 TEST(Stm32CalibrationFlash, AWriteProtectedPageFailsWithWrperrAndKeepsTheOldBlock) {

@@ -11,8 +11,9 @@
 //                       page erase plus 30 double-word programs for the 208-byte block (NOTES.md
 //                       gives the worst case); begin_write()/poll() do the same without waiting.
 //
-// Needs the option byte DBANK = 1 (dual bank, the factory default, facts §1.3): with DBANK = 0
-// write() returns false (dual_bank() says why) and read() still reads.
+// Needs the option bytes DBANK = 1 (dual bank) and BFB2 = 0 (no bank-2 boot), both factory
+// defaults (facts §1.3): otherwise write() returns false (writable() says why) and read() still
+// reads.
 #pragma once
 
 #include <cstddef>
@@ -49,7 +50,7 @@ class CalibrationFlash {
   const fw::JournalScan& last_scan() const { return journal_.last_scan(); }
   fw::CommitError commit_error() const { return journal_.commit_error(); }
   fw::FlashStatus flash_status() const { return journal_.flash_status(); }
-  bool dual_bank() const { return driver_.dual_bank(); }
+  bool writable() const { return driver_.writable(); }
   std::uint32_t last_error_flags() const { return driver_.last_error_flags(); }
 
  private:

@@ -76,12 +76,15 @@ inline void ecc_barrier() {
 template <RegisterAccess A>
 class FlashDriver {
  public:
-  /// Reads OPTR.DBANK once: in single-bank mode (4 KB pages, facts §1.1) the two slots would
-  /// share one page, so erase and program are refused (reads still work).
+  /// Reads OPTR once. Erase and program are refused (reads still work) unless DBANK = 1 and
+  /// BFB2 = 0 (facts §1.3): in single-bank mode (4 KB pages, facts §1.1) the two slots would
+  /// share one page; booting from bank 2 may swap the banks (SYSCFG_MEMRMP.FB_MODE, facts §1.4),
+  /// and then 0x0807_F000 would no longer be the bank BKER = 1 erases.
   explicit FlashDriver(A& io, EccFaultLog& log = ecc_fault_log())
-      : io_(io), log_(log), dual_bank_(read_field(io, Optr::reg, Optr::DBANK) == 1) {}
+      : io_(io), log_(log), writable_(supported_banks(stm32::read(io, Optr::reg))) {}
 
-  bool dual_bank() const { return dual_bank_; }
+  /// The option bytes allow writing: dual bank, no bank-2 boot.
+  bool writable() const { return writable_; }
   /// SR's error flags at the end of the last failed operation (0: none).
   std::uint32_t last_error_flags() const { return last_errors_; }
 
@@ -157,13 +160,16 @@ class FlashDriver {
 
  private:
   enum class Op : std::uint8_t { none, erase, program };
+  static constexpr bool supported_banks(std::uint32_t optr) {
+    return Optr::DBANK.decode(optr) == 1 && Optr::BFB2.decode(optr) == 0;
+  }
   static constexpr std::uint32_t kOperationBits =
       Cr::PG.mask() | Cr::PER.mask() | Cr::PNB.mask() | Cr::BKER.mask() | Cr::START.mask();
 
   // Common checks before an operation, then unlock and clear old flags (a flag left set makes
   // the next operation fail with PGSERR; HAL clears them the same way).
   fw::FlashStatus prepare(std::uint32_t address, std::size_t size) {
-    if (!dual_bank_ || !in_storage(address, size)) return fw::FlashStatus::refused;
+    if (!writable_ || !in_storage(address, size)) return fw::FlashStatus::refused;
     if (op_ != Op::none || Sr::BSY.decode(stm32::read(io_, Sr::reg)) == 1) return fw::FlashStatus::refused;
     if (read_field(io_, Cr::reg, Cr::LOCK) == 1) {
       io_.write(Keyr::reg.address(), Keyr::kKey1);
@@ -201,7 +207,7 @@ class FlashDriver {
 
   A& io_;
   EccFaultLog& log_;
-  bool dual_bank_;
+  bool writable_;
   bool data_cache_was_on_ = false;
   Op op_ = Op::none;
   std::uint32_t last_errors_ = 0;

@@ -85,8 +85,9 @@ struct Eccr {
 };
 
 struct Optr {  // facts §1.3 FLASH_OPTR (0x20), read only here
+  static constexpr Field BFB2{"BFB2", 20, 1};    // boot from bank 2 (banks may be swapped)
   static constexpr Field DBANK{"DBANK", 22, 1};  // 1 = dual bank, 2 KB pages (factory default)
-  static constexpr Field fields[] = {DBANK};
+  static constexpr Field fields[] = {BFB2, DBANK};
   static constexpr Register reg{"FLASH", "FLASH_OPTR", kBase, 0x20, fields};
 };
 
