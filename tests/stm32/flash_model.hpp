@@ -75,6 +75,7 @@ class FlashModel {
     if (address == flash::Sr::reg.address()) {
       if (!powered_) return flash::Sr::BSY.mask();
       if (busy_polls_ == 0) return sr_;
+      if (hold_busy_) return sr_ | flash::Sr::BSY.mask();
       if (--busy_polls_ == 0) sr_ |= flash::Sr::EOP.mask();  // seen from the next read on
       return (sr_ & ~flash::Sr::EOP.mask()) | flash::Sr::BSY.mask();
     }
@@ -114,6 +115,8 @@ class FlashModel {
   // --- test controls -------------------------------------------------------------------------
   std::function<void()> nmi;  // the NMI a double ECC error raises
   std::uint32_t fatal_nmis() const { return fatal_nmis_; }
+  /// On: the running operation never ends (SR keeps BSY), as a hung controller would.
+  void hold_busy(bool on) { hold_busy_ = on; }
   void set_boot_from_bank2(bool on) {
     optr_ = on ? optr_ | flash::Optr::BFB2.mask() : optr_ & ~flash::Optr::BFB2.mask();
   }
@@ -312,6 +315,7 @@ class FlashModel {
   Tear tear_ = Tear::completed;
   std::uint32_t protected_page_ = kNever;
   bool powered_ = true;
+  bool hold_busy_ = false;
   std::uint32_t fatal_nmis_ = 0;
 };
 

@@ -188,6 +188,25 @@ TEST(Stm32CalibrationFlash, AWriteProtectedPageFailsWithWrperrAndKeepsTheOldBloc
   EXPECT_EQ(boot(model).bytes, calibration_bytes(1));
 }
 
+TEST(Stm32CalibrationFlash, AFlashThatStaysBusyMakesWriteGiveUpAtThePollLimit) {
+  FlashModel model;
+  ASSERT_TRUE(commit(model, calibration_bytes(1)));
+  model.power_on();
+  model.hold_busy(true);
+  CalibrationStore store(model, 1000);
+  const std::vector<std::uint8_t> block = calibration_bytes(2);
+  EXPECT_FALSE(store.write(block.data(), block.size()));
+  EXPECT_TRUE(store.timed_out());
+  EXPECT_EQ(model.operations().size(), 32u);  // the erase started and never ended
+  EXPECT_FALSE(store.write(block.data(), block.size()));  // still running: no second commit
+  model.hold_busy(false);
+  std::vector<std::uint8_t> back(2048);
+  back.resize(store.read(back.data(), back.size()));  // finishes the commit first
+  EXPECT_FALSE(store.timed_out());
+  EXPECT_EQ(back, block);
+  EXPECT_TRUE(model.violations().empty());
+}
+
 TEST(Stm32CalibrationFlash, RefusesAnEmptyOrOversizedBlockWithoutTouchingFlash) {
   FlashModel model;
   CalibrationStore store(model);

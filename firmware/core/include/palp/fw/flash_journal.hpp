@@ -23,9 +23,11 @@
 //   board turns the NMI into that status): the slot is invalid, the scan goes on.
 // Sequence numbers are compared as plain u32: a flash page endures ~10^4 erases, far below 2^32.
 //
-// A commit is a state machine: begin_commit() starts the erase, each poll() advances at most
-// one flash operation and never waits, so a main loop can commit without stalling; commit() polls
-// it to the end (bounded) for callers that can wait.
+// Nothing here waits (firmware/core's rule): a commit is a state machine — begin_commit() starts
+// the erase, each poll() advances at most one flash operation — so a main loop commits without
+// stalling; a caller that must wait (the board's synchronous write) polls it to the end itself.
+// While a commit runs the slots are not read (the flash would stall or report busy): scan()
+// and read() return at once (see each).
 #pragma once
 
 #include <array>
@@ -128,7 +130,6 @@ enum class CommitError : std::uint8_t {
   bad_size,     // 0 bytes or more than the slot's capacity
   flash,        // an erase/program did not start or ended with an error (flash_status())
   verify,       // the slot read back is not the block written
-  timeout,      // commit(): the flash stayed busy beyond the poll limit
 };
 
 /// Where the two slots are: two distinct erase pages of slot_size bytes each.
@@ -143,14 +144,12 @@ class FlashJournal {
  public:
   /// Largest payload: the slot less header, CRC double word and marker.
   static constexpr std::size_t kCapacity = SlotSize - kJournalHeaderSize - 16;
-  /// commit(): polls allowed before giving up (a stuck BSY must not hang the caller forever).
-  static constexpr std::uint32_t kCommitPollLimit = 1u << 24;
-
   FlashJournal(F& flash, JournalLayout layout) : flash_(flash), layout_(layout) {}
 
-  /// Reads both slots and picks the newest valid one (finishes a running commit first).
+  /// Reads both slots and picks the newest valid one. While a commit runs: the last scan,
+  /// unchanged (its target slot already marked uncommitted).
   const JournalScan& scan() {
-    finish();
+    if (active()) return scan_;
     for (std::size_t i = 0; i < 2; ++i) scan_.slots[i] = check_slot(layout_.slot_address[i]);
     scan_.newest = newest_of(scan_);
     scanned_ = true;
@@ -159,8 +158,10 @@ class FlashJournal {
   const JournalScan& last_scan() const { return scan_; }
 
   /// The newest valid block's first min(size, length) bytes; with no valid block `size` bytes
-  /// of 0xFF (erased storage: the calibration reads as blank). Returns the bytes written.
+  /// of 0xFF (erased storage: the calibration reads as blank). Returns the bytes written; 0
+  /// while a commit runs (nothing read: poll it to the end first).
   std::size_t read(std::uint8_t* bytes, std::size_t size) {
+    if (active()) return 0;
     scan();
     if (scan_.newest >= 0) {
       const SlotInfo& slot = scan_.slots[static_cast<std::size_t>(scan_.newest)];
@@ -214,14 +215,11 @@ class FlashJournal {
     return state_;
   }
 
-  /// begin_commit() then poll() to the end. True once the block is stored and read back.
-  bool commit(const std::uint8_t* bytes, std::size_t size) {
-    if (!begin_commit(bytes, size)) return false;
-    finish();
-    return state_ == CommitState::done;
-  }
-
   CommitState state() const { return state_; }
+  /// A commit is running (erasing or programming): poll() it.
+  bool active() const {
+    return state_ == CommitState::erasing || state_ == CommitState::programming;
+  }
   CommitError commit_error() const { return error_; }
   /// The flash step's status behind CommitError::flash.
   FlashStatus flash_status() const { return flash_status_; }
@@ -231,9 +229,6 @@ class FlashJournal {
   }
 
  private:
-  bool active() const {
-    return state_ == CommitState::erasing || state_ == CommitState::programming;
-  }
   bool start(FlashStatus s) {
     if (s == FlashStatus::busy) return true;
     fail(CommitError::flash, s);
@@ -245,16 +240,6 @@ class FlashJournal {
     state_ = CommitState::failed;
     return state_;
   }
-  void finish() {
-    for (std::uint32_t n = 0; active(); ++n) {
-      if (n == kCommitPollLimit) {
-        fail(CommitError::timeout, FlashStatus::busy);
-        return;
-      }
-      poll();
-    }
-  }
-
   static constexpr std::size_t pad8(std::size_t n) { return (n + 7u) & ~std::size_t{7}; }
   static constexpr std::size_t double_words_for(std::size_t size) {
     return (kJournalHeaderSize + pad8(size)) / 8 + 2;  // + CRC + marker
