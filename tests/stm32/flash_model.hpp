@@ -223,7 +223,8 @@ class FlashModel {
     }
     const std::uint32_t page = flash::Cr::PNB.decode(value);
     const std::uint32_t address = flash::kBank2Base + page * flash::kPageSize;
-    if (flash::Cr::BKER.decode(value) != 1 || !flash::FlashDriver<FlashModel>::in_storage(address, 8)) {
+    if (flash::Cr::BKER.decode(value) != 1 ||
+        !flash::FlashDriver<FlashModel>::in_storage(address, 8)) {
       violation("erase outside the calibration pages");
       return;
     }

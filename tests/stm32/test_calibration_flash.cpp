@@ -72,7 +72,7 @@ TEST(Stm32CalibrationFlash, SlotHoldsHeaderBlockCrcAndMarkerAsDocumented) {
   FlashModel model;
   const std::vector<std::uint8_t> block = calibration_bytes(7);
   ASSERT_TRUE(commit(model, block));
-  EXPECT_EQ(word_at(model, kSlotA), 0x4C4E4A50u);  // "PJNL"
+  EXPECT_EQ(word_at(model, kSlotA), 0x4C4E4A50u);            // "PJNL"
   EXPECT_EQ(word_at(model, kSlotA + 4), 1u | (208u << 16));  // layout 1, length 208
   EXPECT_EQ(word_at(model, kSlotA + 8), 1u);                 // sequence 1
   EXPECT_EQ(word_at(model, kSlotA + 12), 0u);
@@ -146,7 +146,8 @@ TEST(Stm32CalibrationFlash, EveryPollStartsAtMostOneFlashStepWithBoundedRegister
     ASSERT_LT(polls, 1000u);
   }
   EXPECT_LE(most_accesses, 40u);  // flags, CR, ACR caches after the erase, a program's 2 words
-  EXPECT_EQ(busy_polls, 3u + 30u);  // every BSY the model shows (erase 3, program 1) is seen, none waited on
+  // every BSY the model shows (erase 3, each program 1) is seen, none waited on
+  EXPECT_EQ(busy_polls, 3u + 30u);
   EXPECT_EQ(boot(model).bytes, block);
 }
 
@@ -197,7 +198,7 @@ TEST(Stm32CalibrationFlash, AFlashThatStaysBusyMakesWriteGiveUpAtThePollLimit) {
   const std::vector<std::uint8_t> block = calibration_bytes(2);
   EXPECT_FALSE(store.write(block.data(), block.size()));
   EXPECT_TRUE(store.timed_out());
-  EXPECT_EQ(model.operations().size(), 32u);  // the erase started and never ended
+  EXPECT_EQ(model.operations().size(), 32u);              // the erase started and never ended
   EXPECT_FALSE(store.write(block.data(), block.size()));  // still running: no second commit
   model.hold_busy(false);
   std::vector<std::uint8_t> back(2048);
@@ -231,7 +232,7 @@ TEST(Stm32CalibrationFlash, DriverRefusesAddressesOutsideTheCalibrationPages) {
   EXPECT_EQ(driver.erase_page(kSlotA - 8), fw::FlashStatus::refused);   // bank 2 page 125
   EXPECT_EQ(driver.program_double_word(kSlotA + 4, 0), fw::FlashStatus::refused);
   EXPECT_EQ(driver.program_double_word(0x0808'0000, 0), fw::FlashStatus::refused);
-  EXPECT_EQ(driver.read(flash::kStorageEnd - 8, bytes, 16), fw::FlashStatus::refused);  // past the end
+  EXPECT_EQ(driver.read(flash::kStorageEnd - 8, bytes, 16), fw::FlashStatus::refused);
   EXPECT_EQ(driver.read(kSlotA + 4, bytes, 8), fw::FlashStatus::refused);
   EXPECT_EQ(model.accesses(), 1u);  // OPTR at construction, nothing else
 }
@@ -320,8 +321,7 @@ TEST(Stm32CalibrationFlash, EachDamagedSlotIsRejectedWithItsReasonAndBootFallsBa
     ASSERT_TRUE(commit(model, calibration_bytes(2)));
     d.apply(model);
     const Boot b = boot(model);
-    EXPECT_EQ(b.scan.slots[1].status, d.reason)
-        << fw::slot_status_name(b.scan.slots[1].status);
+    EXPECT_EQ(b.scan.slots[1].status, d.reason) << fw::slot_status_name(b.scan.slots[1].status);
     EXPECT_EQ(b.scan.slots[0].status, SlotStatus::valid);
     EXPECT_EQ(b.bytes, calibration_bytes(1));
     EXPECT_EQ(model.fatal_nmis(), 0u);

@@ -1,8 +1,9 @@
-// The STM32G474 flash driver for calibration storage: a fw::JournalFlash (palp/fw/flash_journal.hpp)
-// over the register seam, confined to the last two 2 KB pages of bank 2 (NOTES.md "Calibration in
-// flash"). Register facts: stm32g474-facts.md §1.1 (bank 2 at 0x0804_0000, 2 KB pages, 128 per
-// bank in dual-bank mode), §1.2 (KEYR unlock, page erase PER/PNB/BKER/START, double-word PG,
-// BSY, error flags, caches around an erase), §1.3 (OPTR.DBANK); definitions in regs/flash.hpp.
+// The STM32G474 flash driver for calibration storage: a fw::JournalFlash
+// (palp/fw/flash_journal.hpp) over the register seam, confined to the last two 2 KB pages of bank 2
+// (NOTES.md "Calibration in flash"). Register facts: stm32g474-facts.md §1.1 (bank 2 at
+// 0x0804_0000, 2 KB pages, 128 per bank in dual-bank mode), §1.2 (KEYR unlock, page erase
+// PER/PNB/BKER/START, double-word PG, BSY, error flags, caches around an erase), §1.3 (OPTR.DBANK);
+// definitions in regs/flash.hpp.
 //
 // Non-blocking: erase_page()/program_double_word() start the operation and return busy; poll()
 // reads SR once (BSY) and, when the operation has ended, clears the flags, clears PER/PG, locks
@@ -170,7 +171,8 @@ class FlashDriver {
   // the next operation fail with PGSERR; HAL clears them the same way).
   fw::FlashStatus prepare(std::uint32_t address, std::size_t size) {
     if (!writable_ || !in_storage(address, size)) return fw::FlashStatus::refused;
-    if (op_ != Op::none || Sr::BSY.decode(stm32::read(io_, Sr::reg)) == 1) return fw::FlashStatus::refused;
+    if (op_ != Op::none || Sr::BSY.decode(stm32::read(io_, Sr::reg)) == 1)
+      return fw::FlashStatus::refused;
     if (read_field(io_, Cr::reg, Cr::LOCK) == 1) {
       io_.write(Keyr::reg.address(), Keyr::kKey1);
       io_.write(Keyr::reg.address(), Keyr::kKey2);

@@ -67,8 +67,8 @@ constexpr const char* flash_status_name(FlashStatus s) {
 /// while it runs, then reports its end (ok or failed) and is ok when nothing runs. read() while
 /// an operation runs is busy (the bank is stalled).
 template <class F>
-concept JournalFlash = requires(F& f, std::uint32_t address, std::uint8_t* bytes,
-                                std::size_t size, std::uint64_t value) {
+concept JournalFlash = requires(F& f, std::uint32_t address, std::uint8_t* bytes, std::size_t size,
+                                std::uint64_t value) {
   { f.read(address, bytes, size) } -> std::same_as<FlashStatus>;
   { f.erase_page(address) } -> std::same_as<FlashStatus>;
   { f.program_double_word(address, value) } -> std::same_as<FlashStatus>;
@@ -127,9 +127,9 @@ enum class CommitState : std::uint8_t { idle, erasing, programming, done, failed
 /// Why the last commit failed (CommitState::failed).
 enum class CommitError : std::uint8_t {
   none,
-  bad_size,     // 0 bytes or more than the slot's capacity
-  flash,        // an erase/program did not start or ended with an error (flash_status())
-  verify,       // the slot read back is not the block written
+  bad_size,  // 0 bytes or more than the slot's capacity
+  flash,     // an erase/program did not start or ended with an error (flash_status())
+  verify,    // the slot read back is not the block written
 };
 
 /// Where the two slots are: two distinct erase pages of slot_size bytes each.
@@ -166,8 +166,9 @@ class FlashJournal {
     if (scan_.newest >= 0) {
       const SlotInfo& slot = scan_.slots[static_cast<std::size_t>(scan_.newest)];
       const std::size_t n = size < slot.length ? size : slot.length;
-      if (read_bytes(layout_.slot_address[static_cast<std::size_t>(scan_.newest)] +
-                         kJournalHeaderSize, bytes, n) == FlashStatus::ok) {
+      if (read_bytes(
+              layout_.slot_address[static_cast<std::size_t>(scan_.newest)] + kJournalHeaderSize,
+              bytes, n) == FlashStatus::ok) {
         return n;
       }
     }
@@ -188,8 +189,8 @@ class FlashJournal {
     for (std::size_t k = 0; k < size; ++k) payload_[k] = bytes[k];
     length_ = static_cast<std::uint16_t>(size);
     target_ = scan_.newest == 0 ? 1u : 0u;
-    sequence_ = scan_.newest >= 0 ? scan_.slots[static_cast<std::size_t>(scan_.newest)].sequence + 1u
-                                  : 1u;
+    sequence_ =
+        scan_.newest >= 0 ? scan_.slots[static_cast<std::size_t>(scan_.newest)].sequence + 1u : 1u;
     crc_ = block_crc();
     next_ = 0;
     error_ = CommitError::none;
@@ -297,7 +298,8 @@ class FlashJournal {
     std::array<std::uint8_t, 64> chunk{};
     for (std::size_t done = 0; done < size;) {
       const std::size_t want = pad8(size - done) < chunk.size() ? pad8(size - done) : chunk.size();
-      const FlashStatus s = flash_.read(address + static_cast<std::uint32_t>(done), chunk.data(), want);
+      const FlashStatus s =
+          flash_.read(address + static_cast<std::uint32_t>(done), chunk.data(), want);
       if (s != FlashStatus::ok) return s;
       for (std::size_t k = 0; k < want && done + k < size; ++k) out[done + k] = chunk[k];
       done += want;
@@ -322,7 +324,7 @@ class FlashJournal {
       s = flash_.read(base, chunk.data(), 8);
       if (s != FlashStatus::ok) return {read_failure(s)};
       return {le64(chunk.data()) == ~std::uint64_t{0} ? SlotStatus::erased
-                                                       : SlotStatus::uncommitted};
+                                                      : SlotStatus::uncommitted};
     }
     s = flash_.read(base, chunk.data(), kJournalHeaderSize);
     if (s != FlashStatus::ok) return {read_failure(s)};
@@ -334,8 +336,10 @@ class FlashJournal {
     const std::uint32_t sequence = le32(chunk.data() + 8);
     std::uint32_t state = proto::crc32_update(proto::kCrc32Init, chunk.data(), kJournalHeaderSize);
     for (std::size_t done = 0; done < length;) {
-      const std::size_t want = pad8(length - done) < chunk.size() ? pad8(length - done) : chunk.size();
-      s = flash_.read(base + static_cast<std::uint32_t>(kJournalHeaderSize + done), chunk.data(), want);
+      const std::size_t want =
+          pad8(length - done) < chunk.size() ? pad8(length - done) : chunk.size();
+      s = flash_.read(base + static_cast<std::uint32_t>(kJournalHeaderSize + done), chunk.data(),
+                      want);
       if (s != FlashStatus::ok) return {read_failure(s)};
       const std::size_t used = length - done < want ? length - done : want;
       state = proto::crc32_update(state, chunk.data(), used);
@@ -344,7 +348,8 @@ class FlashJournal {
     s = flash_.read(base + static_cast<std::uint32_t>(kJournalHeaderSize + pad8(length)),
                     chunk.data(), 8);
     if (s != FlashStatus::ok) return {read_failure(s)};
-    if (le64(chunk.data()) != std::uint64_t{proto::crc32_final(state)}) return {SlotStatus::bad_crc};
+    if (le64(chunk.data()) != std::uint64_t{proto::crc32_final(state)})
+      return {SlotStatus::bad_crc};
     return {SlotStatus::valid, sequence, static_cast<std::uint16_t>(length)};
   }
 
