@@ -42,7 +42,8 @@ class CalibrationFlash {
       : driver_(io), journal_(driver_, kCalibrationJournalLayout), poll_limit_(poll_limit) {}
 
   // --- contract 3 --------------------------------------------------------------------------
-  /// (A commit begun with begin_write() is finished first.)
+  /// A commit begun with begin_write() is finished first; if its flash stays busy beyond the
+  /// poll limit, 0 (nothing read, timed_out()).
   std::size_t read(std::uint8_t* bytes, std::size_t size) {
     finish();
     return journal_.read(bytes, size);
