@@ -12,6 +12,7 @@
 #include "rcc.hpp"
 #include "tim.hpp"
 #include "usart.hpp"
+#include "usb.hpp"
 
 namespace palp::stm32 {
 
@@ -44,6 +45,10 @@ inline constexpr const Register* kAllRegisters[] = {
     &gpio::PortC::afrh,
     // The flash controller for calibration storage (flash_driver.hpp); FLASH_ACR is above.
     &flash::Keyr::reg, &flash::Sr::reg, &flash::Cr::reg, &flash::Eccr::reg, &flash::Optr::reg,
+    // The USB device peripheral (usb_fsdev.hpp); BCDR is not in the SVD (regs/usb.hpp).
+    &usb::Epr::regs[0], &usb::Epr::regs[1], &usb::Epr::regs[2], &usb::Epr::regs[3],
+    &usb::Epr::regs[4], &usb::Epr::regs[5], &usb::Epr::regs[6], &usb::Epr::regs[7],
+    &usb::Cntr::reg, &usb::Istr::reg, &usb::Fnr::reg, &usb::Daddr::reg, &usb::Btable::reg,
 };
 
 }  // namespace palp::stm32
