@@ -44,6 +44,13 @@ struct Mmio {
   void write(std::uint32_t address, std::uint32_t value) const {
     *reinterpret_cast<volatile std::uint32_t*>(static_cast<std::uintptr_t>(address)) = value;
   }
+  /// 16-bit loads/stores, for memories that take nothing wider (the USB PMA, facts §5.1).
+  std::uint16_t read16(std::uint32_t address) const {
+    return *reinterpret_cast<volatile std::uint16_t*>(static_cast<std::uintptr_t>(address));
+  }
+  void write16(std::uint32_t address, std::uint16_t value) const {
+    *reinterpret_cast<volatile std::uint16_t*>(static_cast<std::uintptr_t>(address)) = value;
+  }
 };
 
 /// An Access is anything with read(address) and write(address, value) on 32-bit words.
@@ -52,6 +59,16 @@ concept RegisterAccess = requires(A& io, std::uint32_t address, std::uint32_t va
   { io.read(address) } -> std::same_as<std::uint32_t>;
   io.write(address, value);
 };
+
+/// A RegisterAccess that also does 16-bit accesses: the USB packet memory (PMA) is 16 bits wide
+/// and takes only half-word loads and stores (facts §5.1, §5.3 item 10), so the USB driver needs
+/// them; every other driver keeps to the 32-bit words.
+template <class A>
+concept HalfwordAccess = RegisterAccess<A> &&
+    requires(A& io, std::uint32_t address, std::uint16_t value) {
+      { io.read16(address) } -> std::same_as<std::uint16_t>;
+      io.write16(address, value);
+    };
 
 template <RegisterAccess A>
 std::uint32_t read(A& io, const Register& reg) {
