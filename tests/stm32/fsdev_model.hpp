@@ -94,7 +94,6 @@ class FsdevModel {
     } else {
       value = read_usb(address - usb::kBase);
     }
-    run_hook(address);
     return value;
   }
 
@@ -102,6 +101,7 @@ class FsdevModel {
     if (logging_) {
       log_.push_back({address, value, reads_});
     }
+    run_hook(address);
     if (in_pma(address)) {
       ++faults_.pma_wide;
     } else if (!is_usb_register(address)) {
@@ -120,7 +120,6 @@ class FsdevModel {
       const std::uint32_t at = address - usb::kPmaBase;
       value = static_cast<std::uint16_t>(pma_[at] | (pma_[at + 1] << 8));
     }
-    run_hook(address);
     return value;
   }
 
@@ -256,9 +255,9 @@ class FsdevModel {
 
   // ---- Inspection ----
 
-  /// Runs `action` once, right after the next read of `address` (a bus event between the
-  /// driver's read of a register and its write: what breaks read-modify-write).
-  void after_next_read(std::uint32_t address, std::function<void()> action) {
+  /// Runs `action` once, right before the next write to `address` takes effect: a bus event
+  /// between the driver's last read of a register and its write, what breaks read-modify-write.
+  void before_next_write(std::uint32_t address, std::function<void()> action) {
     hook_address_ = address;
     hook_ = std::move(action);
   }

@@ -189,7 +189,7 @@ TEST_F(UsbFsdevTest, AckingAnOutDoesNotClearAnInCompletedBetweenReadAndWrite) {
   driver.write_in(1, sent.data(), sent.size());
   ASSERT_EQ(model.out(1, sent), Handshake::ack);
   InPacket taken;
-  model.after_next_read(Epr::address(1), [&] { taken = model.in(1); });
+  model.before_next_write(Epr::address(1), [&] { taken = model.in(1); });
   EXPECT_EQ(describe(driver.poll()), "out 1");
   ASSERT_EQ(taken.handshake, Handshake::ack);
   EXPECT_NE(model.epr(1) & Epr::CTR_TX.mask(), 0u);
