@@ -147,7 +147,8 @@ class FsdevModel {
   }
 
   /// A SETUP (DATA0, 8 bytes) to endpoint `ep`; the host's toggles of `ep` become DATA1 on ACK.
-  Handshake setup(std::uint8_t ep, const std::array<std::uint8_t, 8>& bytes) {
+  /// Any other size plays the damaged SETUP of facts §5.3 item 6 (a COUNT other than 8).
+  Handshake setup(std::uint8_t ep, std::span<const std::uint8_t> bytes) {
     const int n = answering_epr(ep, usb::Epr::STAT_RX);
     if (n < 0 || usb::Epr::EP_TYPE.decode(epr_[n]) != usb::Epr::kTypeControl) {
       return Handshake::none;

@@ -102,6 +102,16 @@ TEST_F(UsbFsdevTest, ASetupArrivesAsASetupEventWithItsEightBytes) {
   EXPECT_EQ(driver.read_out(0, bytes.data(), bytes.size()), 0u);
 }
 
+TEST_F(UsbFsdevTest, ASetupOfOtherThanEightBytesIsDroppedAndEp0ReArmed) {
+  const std::array<std::uint8_t, 5> damaged = {0x80, 0x06, 0x00, 0x01, 0x00};
+  ASSERT_EQ(model.setup(0, damaged), Handshake::ack);
+  EXPECT_EQ(drain(), Lines{});
+  EXPECT_EQ(stat_rx(model, 0), Epr::kStatValid);
+  EXPECT_EQ(model.epr(0) & Epr::CTR_RX.mask(), 0u);
+  ASSERT_EQ(model.setup(0, kGetDeviceDescriptor), Handshake::ack);
+  EXPECT_EQ(drain(), Lines{"setup 0"});
+}
+
 TEST_F(UsbFsdevTest, OutPacketsOfEverySizeFrom0To64AreReadBackExactly) {
   driver.open_endpoint(1, EndpointType::bulk, 64);
   for (std::size_t size = 0; size <= 64; ++size) {
