@@ -298,6 +298,9 @@ class UsbFsdev {
   static constexpr std::uint32_t kAllToggles =
       Epr::STAT_RX.mask() | Epr::STAT_TX.mask() | Epr::DTOG_RX.mask() | Epr::DTOG_TX.mask();
   static constexpr std::uint32_t kKeepConfig = 0xFFFF'FFFF;  // write_epr: keep EP_TYPE/KIND/EA
+  // The facts sheet's recipe keeps exactly these bits (0x8F8F); none is a toggle bit.
+  static_assert((kConfigBits | kCtrBits | Epr::SETUP.mask()) == Epr::kKeepMask);
+  static_assert((kAllToggles & Epr::kKeepMask) == 0);
 
   static constexpr std::uint32_t type_code(dev::EndpointType type) {
     switch (type) {
