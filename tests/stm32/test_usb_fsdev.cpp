@@ -312,7 +312,7 @@ TEST_F(UsbFsdevTest, CallsTheLayoutOrStateCannotHonourDoNothingAndSayWhy) {
   EXPECT_EQ(model.epr(0), ep0);
   EXPECT_EQ(model.daddr(), usb::Daddr::EF.mask());
   EXPECT_EQ(model.in(1).bytes, std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + 32));
-  // A 32-byte endpoint's OUT allocation is 32 bytes: a longer packet is not accepted.
+  // A 32-byte endpoint's OUT allocation is 32 bytes (the model refuses a longer packet).
   driver.arm_out(1);
   EXPECT_EQ(model.rx_allocation(1), 32u);
 }
