@@ -238,6 +238,17 @@ TEST_F(UsbFsdevTest, BothTransferFlagsPendingGiveTwoEventsInBeforeOut) {
   EXPECT_EQ(drain(), (Lines{"in_complete 1", "out 1"}));
 }
 
+TEST_F(UsbFsdevTest, TransfersPendingOnSeveralEndpointsAreEachReportedOnce) {
+  driver.open_endpoint(1, EndpointType::bulk, 64);
+  driver.open_endpoint(2, EndpointType::interrupt, 64);
+  driver.arm_out(1);
+  driver.write_in(2, nullptr, 0);
+  ASSERT_EQ(model.out(1, pattern(7, 0)), Handshake::ack);
+  ASSERT_EQ(model.in(2).handshake, Handshake::ack);
+  ASSERT_EQ(model.setup(0, kGetDeviceDescriptor), Handshake::ack);
+  EXPECT_EQ(drain(), (Lines{"setup 0", "out 1", "in_complete 2"}));  // EP_ID order
+}
+
 // ISTR flags are rc_w0: clearing one by writing its complement leaves the others pending; a
 // driver writing the flag itself (1) would clear every other flag and keep the one it meant.
 TEST_F(UsbFsdevTest, PendingResetSuspendAndWakeupAreEachReportedOnce) {
