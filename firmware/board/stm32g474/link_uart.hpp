@@ -10,7 +10,15 @@
 //            and cleared, never silent.
 //   read     pops the ring; if the ISR had masked itself, the interrupt is re-enabled once there
 //            is room (the still-set RXFNE then raises it at once: the line is level-sensitive).
-//   write    non-blocking: TDR written only while ISR.TXFNF says the TX FIFO has room.
+//   write    non-blocking: TDR written only while ISR.TXFNF says the TX FIFO has room; when it
+//            could not take everything the board arms the TX-FIFO-not-full interrupt
+//            (arm_tx_wakeup: CR1.TXFNFIE, the SVD's TXEIE), which on_irq disarms as soon as the
+//            FIFO has room again, so the main loop's WFI wakes to write the rest.
+// CR1 is read-modify-written by the ISR (it only ever CLEARS an enable: RXNEIE when the ring is
+// full, TXEIE when the FIFO has room) and by the main loop (it only SETS one: RXNEIE on resume,
+// TXEIE to arm). An ISR's clear lost to a main-loop write in flight re-sets that enable, whose
+// condition still holds: the interrupt comes once more and the ISR clears it again. Nothing is
+// lost either way; the board still arms under its interrupt lock.
 #pragma once
 
 #include <atomic>
@@ -76,6 +84,10 @@ class Link {
   /// LPUART_IRQHandler's body.
   void on_irq() {
     std::uint32_t isr = read(io_, lpuart1::Isr::reg);
+    if (lpuart1::Isr::TXE.decode(isr) != 0 &&
+        read_field(io_, lpuart1::Cr1::reg, lpuart1::Cr1::TXEIE) != 0) {  // room again: disarm
+      write_field(io_, lpuart1::Cr1::reg, lpuart1::Cr1::TXEIE, 0);
+    }
     if (lpuart1::Isr::ORE.decode(isr) != 0) {  // a byte was lost on the wire: count, clear
       overruns_.store(overruns_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
       io_.write(lpuart1::Icr::reg.address(), lpuart1::Icr::ORECF.mask());
@@ -111,6 +123,11 @@ class Link {
     }
     return n;
   }
+
+  /// Arms the TX-FIFO-not-full interrupt (after write_bytes took less than asked): on_irq
+  /// disarms it once the FIFO has room, which wakes the main loop.
+  void arm_tx_wakeup() { write_field(io_, lpuart1::Cr1::reg, lpuart1::Cr1::TXEIE, 1); }
+  bool tx_wakeup_armed() { return read_field(io_, lpuart1::Cr1::reg, lpuart1::Cr1::TXEIE) != 0; }
 
   /// Overruns since start (each lost at least one byte): for a health field.
   std::uint32_t overruns() const { return overruns_.load(std::memory_order_relaxed); }

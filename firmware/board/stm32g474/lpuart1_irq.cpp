@@ -12,5 +12,7 @@ HostLink& host_link() { return g_link; }
 
 }  // namespace palp::stm32::link_uart
 
-void LPUART_IRQHandler();  // declared (weak) in vectors.cpp; this is the strong definition
-void LPUART_IRQHandler() { palp::stm32::link_uart::host_link().on_irq(); }
+// vectors.cpp declares the weak default inside extern "C"; without the same linkage here this
+// would be a different (mangled) symbol and the vector table would keep the default handler.
+extern "C" void LPUART_IRQHandler();
+extern "C" void LPUART_IRQHandler() { palp::stm32::link_uart::host_link().on_irq(); }

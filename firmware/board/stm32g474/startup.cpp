@@ -6,8 +6,12 @@
 //
 // System control registers: board/cortex_m/scb.hpp (VTOR takes the table's address, bits [31:7];
 // 128-word aligned here; CPACR CP10/CP11 full access, then DSB, ISB).
+//
+// First of all, a bootloader request left by the board before its reset (bootloader_request.hpp,
+// facts §1.4 pattern 1) enters the ROM: nothing else has run, so the chip is in its reset state.
 #include <cstdint>
 
+#include "bootloader_request.hpp"
 #include "clock.hpp"
 #include "scb.hpp"
 #include "startup.hpp"
@@ -32,6 +36,10 @@ extern const std::uint32_t palp_vector_table[];  // vectors.cpp
 [[noreturn]] void palp_reset_handler();
 }
 
+// In .bss, so at or above 0x2000_4000 after the stack (bootloader_request.hpp); the reset handler
+// reads it before .bss is zeroed.
+volatile std::uint32_t palp_bootloader_request[2];
+
 namespace {
 
 void copy(std::uint32_t* dst, std::uint32_t* end, const std::uint32_t* src) {
@@ -50,6 +58,17 @@ palp::stm32::clock::Status g_clock_status = palp::stm32::clock::Status::ok;
 palp::stm32::clock::Status palp::stm32::startup::clock_status() { return g_clock_status; }
 
 void palp_reset_handler() {
+  if (palp_bootloader_request[0] == palp::stm32::bootloader::kRequestWord0 &&
+      palp_bootloader_request[1] == palp::stm32::bootloader::kRequestWord1) {
+    palp_bootloader_request[0] = 0;  // once: the ROM's exit (DFU leave) resets into the app
+    palp_bootloader_request[1] = 0;
+    const auto* rom = reinterpret_cast<const volatile std::uint32_t*>(
+        static_cast<std::uintptr_t>(palp::stm32::bootloader::kSystemMemory));
+    const std::uint32_t rom_sp = rom[0];
+    const std::uint32_t rom_reset = rom[1];
+    asm volatile("msr msp, %0\n bx %1" ::"r"(rom_sp), "r"(rom_reset) : "memory");
+    __builtin_unreachable();
+  }
   // The FPU first: compiled code may use the VFP registers anywhere.
   palp::board::scb::cpacr() = palp::board::scb::cpacr() | palp::board::scb::kCpacrCp10Cp11Full;
   // The table in flash, wherever the boot mode mapped it (0x0 alias or 0x08000000).

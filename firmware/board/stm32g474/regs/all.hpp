@@ -49,6 +49,9 @@ inline constexpr const Register* kAllRegisters[] = {
     &usb::Epr::regs[0], &usb::Epr::regs[1], &usb::Epr::regs[2], &usb::Epr::regs[3],
     &usb::Epr::regs[4], &usb::Epr::regs[5], &usb::Epr::regs[6], &usb::Epr::regs[7],
     &usb::Cntr::reg, &usb::Istr::reg, &usb::Fnr::reg, &usb::Daddr::reg, &usb::Btable::reg,
+    // The board class (stm_board.hpp): the µs clock, nFAULT, contact line, driver enable.
+    &tim5::Cr1::reg, &tim5::Egr::reg, &tim5::Cnt::reg, &tim5::Psc::reg, &tim5::Arr::reg,
+    &gpio::IdrC::reg, &gpio::BsrrC::reg,
 };
 
 }  // namespace palp::stm32

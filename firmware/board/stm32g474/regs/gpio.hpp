@@ -87,6 +87,23 @@ PALP_GPIO_PORT_REGS(B, kBaseB)
 PALP_GPIO_PORT_REGS(C, kBaseC)
 #undef PALP_GPIO_PORT_REGS
 
+// The board's own GPIO lines (stm_board.hpp; README §3): the nFAULT input PC10, the contact line
+// PC6 and the driver enable PC11 (outputs), the status LED PA5 (BsrrA above).
+struct IdrC {  // SVD GPIOC.IDR (0x10): the pins' input levels
+  static constexpr Field IDR10{"IDR10", 10, 1};
+  static constexpr Field fields[] = {IDR10};
+  static constexpr Register reg{"GPIOC", "IDR", kBaseC, 0x10, fields};
+};
+
+struct BsrrC {  // SVD GPIOC.BSRR (0x18): write 1 to BSn sets pin n, to BRn clears it (atomic)
+  static constexpr Field BS6{"BS6", 6, 1};
+  static constexpr Field BS11{"BS11", 11, 1};
+  static constexpr Field BR6{"BR6", 22, 1};
+  static constexpr Field BR11{"BR11", 27, 1};
+  static constexpr Field fields[] = {BS6, BS11, BR6, BR11};
+  static constexpr Register reg{"GPIOC", "BSRR", kBaseC, 0x18, fields};
+};
+
 struct ModerB {  // SVD GPIOB.MODER
   static constexpr Register reg{"GPIOB", "MODER", kBaseB, 0x00, kModerFields};
 };

@@ -51,8 +51,9 @@ struct Apb1enr1 {  // facts §3.1 enable registers (0x58); bits: §2
   static constexpr Field CRSEN{"CRSEN", 8, 1};
   static constexpr Field PWREN{"PWREN", 28, 1};
   static constexpr Field TIM2EN{"TIM2EN", 0, 1};  // facts §2 (TIM2 row)
+  static constexpr Field TIM5EN{"TIM5EN", 3, 1};  // facts §2 (TIM5 row)
   static constexpr Field USBEN{"USBEN", 23, 1};   // facts §2 (USB row)
-  static constexpr Field fields[] = {CRSEN, PWREN, TIM2EN, USBEN};
+  static constexpr Field fields[] = {CRSEN, PWREN, TIM2EN, TIM5EN, USBEN};
   static constexpr Register reg{"RCC", "RCC_APB1ENR1", kBase, 0x58, fields};
 };
 

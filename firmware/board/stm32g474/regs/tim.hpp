@@ -1,5 +1,7 @@
-// TIM1 (advanced timer: the H-bridge PWM and the ADC trigger) and TIM2 (32-bit: the quadrature
-// encoder). Bases: stm32g474-facts.md §2; offsets: §4.1; TIM1 fields: §4.2; TIM2 fields: §4.3.
+// TIM1 (advanced timer: the H-bridge PWM and the ADC trigger), TIM2 (32-bit: the quadrature
+// encoder) and TIM5 (32-bit: the board's free-running microsecond clock). Bases: stm32g474-facts.md
+// §2; offsets: §4.1; TIM1 fields: §4.2; TIM2/TIM5 fields: §4.3 (both 32-bit). TIM5 is derivedFrom
+// TIM2 in the SVD, so its registers keep TIM2's SVD names (TIM2_CR1, ...) under peripheral TIM5.
 // Register and field names as in the SVD: TIM1_CR1, ..., TIM1_CCMR1_Alternate (the output-compare
 // view of CCMR1); the 4th bit of a split field is the SVD's `_1` field (OC1M_1 = OC1M[3] at bit
 // 16, MMS_1 = MMS[3] at bit 25, SMS_1 = SMS[3] at bit 16; facts §4.2, §4.3). Widths of ARR/CCRx
@@ -12,6 +14,7 @@ namespace palp::stm32::tim {
 
 inline constexpr std::uint32_t kTim1Base = 0x4001'2C00;  // facts §2
 inline constexpr std::uint32_t kTim2Base = 0x4000'0000;  // facts §2
+inline constexpr std::uint32_t kTim5Base = 0x4000'0C00;  // facts §2
 
 /// CR1 fields, the same on TIM1 and TIM2 (facts §4.2 CR1).
 struct Cr1Fields {
@@ -196,3 +199,36 @@ struct Egr : tim::EgrFields {  // facts §4.1 EGR 0x14
 };
 
 }  // namespace palp::stm32::tim2
+
+namespace palp::stm32::tim5 {
+
+using tim::kTim5Base;
+
+// The µs clock (stm_board.hpp): PSC = 170 - 1, ARR = 0xFFFF_FFFF, counting up from UG.
+struct Cr1 : tim::Cr1Fields {  // facts §4.1 CR1 0x00
+  static constexpr Register reg{"TIM5", "TIM2_CR1", kTim5Base, 0x00, fields};
+};
+
+struct Egr : tim::EgrFields {  // facts §4.1 EGR 0x14
+  static constexpr Register reg{"TIM5", "TIM2_EGR", kTim5Base, 0x14, fields};
+};
+
+struct Cnt {  // facts §4.1 CNT 0x24; the count's 32 bits (bit 31 is CNT's MSB while UIFREMAP = 0)
+  static constexpr Field CNT{"CNT", 0, 31};
+  static constexpr Field fields[] = {CNT};
+  static constexpr Register reg{"TIM5", "TIM2_CNT", kTim5Base, 0x24, fields};
+};
+
+struct Psc {  // facts §4.1 PSC 0x28: f_cnt = f_tim / (PSC + 1)
+  static constexpr Field PSC{"PSC", 0, 16};
+  static constexpr Field fields[] = {PSC};
+  static constexpr Register reg{"TIM5", "TIM2_PSC", kTim5Base, 0x28, fields};
+};
+
+struct Arr {  // facts §4.1 ARR 0x2C, §4.3 (32-bit: 0xFFFF_FFFF)
+  static constexpr Field ARR{"ARR", 0, 32};
+  static constexpr Field fields[] = {ARR};
+  static constexpr Register reg{"TIM5", "TIM2_ARR", kTim5Base, 0x2C, fields};
+};
+
+}  // namespace palp::stm32::tim5

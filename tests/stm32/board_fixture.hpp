@@ -1,0 +1,144 @@
+// The STM32G474 board class (firmware/board/stm32g474/stm_board.hpp) on a host register file, for
+// tests/stm32/test_board*.cpp: the hardware's part the board's init polls (ADC calibration ends,
+// ADEN raises ADRDY, ISR bits are write-1-to-clear), a Cpu that records PRIMASK/WFI/barriers, and
+// a fixture that builds and inits a board with a recording tick handler.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "register_file.hpp"
+#include "stm_board.hpp"
+
+namespace palp::stm32::board_test {
+
+/// The register file plus what the board's init needs from the ADCs to succeed.
+class BoardHardware {
+ public:
+  std::uint32_t read(std::uint32_t address) { return rf.read(address); }
+  void write(std::uint32_t address, std::uint32_t value) {
+    for (const auto& [cr, isr] : {std::pair{adc::Cr::adc1, adc::Isr::adc1},
+                                  std::pair{adc::Cr::adc2, adc::Isr::adc2}}) {
+      if (address == isr.address()) {  // write 1 to clear; logged
+        const std::uint32_t before = rf.peek(isr);
+        rf.write(address, value);
+        rf.poke(isr, before & ~value);
+        return;
+      }
+      if (address == cr.address()) {  // calibration ends at once; ADEN raises ADRDY
+        rf.write(address, value & ~adc::Cr::ADCAL.mask());
+        if (adc::Cr::ADEN.decode(value) == 1) set(isr, adc::Isr::ADRDY.mask());
+        return;
+      }
+    }
+    rf.write(address, value);
+  }
+
+  /// Sets bits of a register as the hardware would.
+  void set(const Register& reg, std::uint32_t bits) { rf.poke(reg, rf.peek(reg) | bits); }
+  std::uint32_t peek(const Register& reg) const { return rf.peek(reg); }
+  std::uint32_t peek(std::uint32_t address) const { return rf.peek({"", "", address, 0, {}}); }
+  void poke(const Register& reg, std::uint32_t value) { rf.poke(reg, value); }
+  void poke(std::uint32_t address, std::uint32_t value) { rf.poke({"", "", address, 0, {}}, value); }
+  std::uint32_t field(const Register& reg, const Field& f) const { return f.decode(rf.peek(reg)); }
+
+  /// The writes logged since `from` (an index into the log).
+  std::vector<test::Write> writes_since(std::size_t from) const {
+    return {rf.log().begin() + static_cast<std::ptrdiff_t>(from), rf.log().end()};
+  }
+  std::size_t log_size() const { return rf.log().size(); }
+  /// How many writes of `value` to `address` since `from`.
+  std::size_t count_writes(std::uint32_t address, std::uint32_t value, std::size_t from = 0) const {
+    std::size_t n = 0;
+    for (const test::Write& w : writes_since(from)) n += w.address == address && w.value == value;
+    return n;
+  }
+
+  test::RegisterFile rf;
+};
+
+/// The core's operations, recorded: "mask"/"restore" (PRIMASK save/restore), "cpsid", "cpsie",
+/// "wfi", "barrier", "wait_for_reset".
+class RecordingCpu {
+ public:
+  std::uint32_t mask_interrupts() {
+    events.emplace_back("mask");
+    const std::uint32_t was = primask;
+    primask = 1;
+    return was;
+  }
+  void restore_interrupts(std::uint32_t was) {
+    events.emplace_back("restore");
+    primask = was;
+  }
+  void disable_interrupts() {
+    events.emplace_back("cpsid");
+    primask = 1;
+  }
+  void enable_interrupts() {
+    events.emplace_back("cpsie");
+    primask = 0;
+  }
+  void wait_for_interrupt() { events.emplace_back(primask ? "wfi (masked)" : "wfi"); }
+  void barrier() { events.emplace_back("barrier"); }
+  void wait_for_reset() { events.emplace_back("wait_for_reset"); }
+
+  std::vector<std::string> events;
+  std::uint32_t primask = 0;
+};
+
+using Board = StmBoardT<BoardHardware, RecordingCpu>;
+static_assert(app::Board<Board>, "the register-file board satisfies the app's Board concept");
+
+inline constexpr std::uint32_t kPressureAddress = 0x2000'5000;
+inline constexpr std::uint32_t kRequestAddress = 0x2000'6000;
+
+/// A board after init(), with a tick handler that runs the app's part: read_inputs, then
+/// apply_outputs with `outputs`, recording the inputs of every tick.
+class BoardTest : public ::testing::Test {
+ protected:
+  BoardTest() : link(hw), board(hw, cpu, link, platform()) {
+    hw.poke(gpio::IdrC::reg, gpio::IdrC::IDR10.mask());  // nFAULT released (pulled up)
+    hw.poke(lpuart1::Isr::reg, lpuart1::Isr::TXE.mask());  // TX FIFO has room
+    board.init();
+  }
+
+  BoardPlatform platform() {
+    BoardPlatform p;
+    p.pressure_codes = pressure.data();
+    p.pressure_codes_address = kPressureAddress;
+    p.bootloader_request_address = kRequestAddress;
+    p.git_hash = "abc1234";
+    return p;
+  }
+
+  static void on_tick(void* self) {
+    auto& t = *static_cast<BoardTest*>(self);
+    fw::TickInputs in;
+    t.board.read_inputs(in);
+    t.inputs.push_back(in);
+    t.board.apply_outputs(t.outputs);
+  }
+  app::TickHandler handler() { return {&BoardTest::on_tick, this}; }
+
+  /// TIM5 at `us` µs (the count's low 32 bits), then one ADC1 end-of-sequence interrupt.
+  void tick_at(std::uint64_t us) {
+    hw.poke(tim5::Cnt::reg, static_cast<std::uint32_t>(us));
+    hw.set(adc::Isr::adc1, adc::Isr::JEOC.mask() | adc::Isr::JEOS.mask());
+    board.on_tick_irq();
+  }
+
+  BoardHardware hw;
+  RecordingCpu cpu;
+  std::array<std::uint16_t, 6> pressure{};
+  Board::Link link;
+  Board board;
+  fw::TickOutputs outputs;
+  std::vector<fw::TickInputs> inputs;
+};
+
+}  // namespace palp::stm32::board_test
