@@ -141,12 +141,15 @@ TEST_F(StmBoardSystem, CalibrationStandInReadsErasedUntilWrittenThenTheBlockPadd
   std::uint8_t block[8] = {};
   EXPECT_EQ(board.read_calibration(block, sizeof block), sizeof block);
   for (std::uint8_t b : block) EXPECT_EQ(b, 0xFF);
+  const std::uint8_t longer[5] = {1, 2, 3, 4, 5};
+  EXPECT_TRUE(board.write_calibration(longer, 5));
   const std::uint8_t stored[3] = {7, 8, 9};
-  EXPECT_TRUE(board.write_calibration(stored, 3));
+  EXPECT_TRUE(board.write_calibration(stored, 3));  // a shorter block replaces it whole
   EXPECT_EQ(board.read_calibration(block, sizeof block), sizeof block);
   EXPECT_EQ(block[0], 7);
   EXPECT_EQ(block[2], 9);
   EXPECT_EQ(block[3], 0xFF);
+  EXPECT_EQ(block[4], 0xFF);
   static std::uint8_t too_big[fw::kCalibrationMaxBlockSize + 1] = {};
   EXPECT_FALSE(board.write_calibration(too_big, sizeof too_big));
 }

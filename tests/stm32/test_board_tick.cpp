@@ -83,15 +83,15 @@ TEST_F(StmBoardTick, OneEndOfSequenceInterruptDeliversTheInputsOfTheKnownCodes) 
 
 TEST_F(StmBoardTick, ApplyOutputsWritesTheBridgeDutyForTheMeasuredSupplyAndTheContactLine) {
   ASSERT_TRUE(board.start_tick(20'000, handler()));
-  hw.poke(adc::Jdr2::adc1, 2258);  // 24.005 V
+  hw.poke(adc::Jdr2::adc1, 1882);  // 1882 x 3.3 / 4096 x 108.2 / 8.2 = 20.007 V (not the nominal 24)
   outputs.v_coil_V = 12.0f;
   outputs.contact_line = true;
   const std::size_t from = hw.log_size();
   tick_at(25);
-  // 12 / 24.005 x 4250 = 2124.6 -> 2125 counts between the legs, centred on 2125:
-  // CCR1 = (4250 + 2125) / 2 = 3187, CCR2 = 3187 - 2125 = 1062.
-  EXPECT_EQ(hw.peek(tim1::Ccr1::reg), 3187u);
-  EXPECT_EQ(hw.peek(tim1::Ccr2::reg), 1062u);
+  // 12 / 20.007 x 4250 = 2549.1 -> 2549 counts between the legs, centred on 2125:
+  // CCR1 = (4250 + 2549) / 2 = 3399, CCR2 = 3399 - 2549 = 850.
+  EXPECT_EQ(hw.peek(tim1::Ccr1::reg), 3399u);
+  EXPECT_EQ(hw.peek(tim1::Ccr2::reg), 850u);
   EXPECT_EQ(hw.count_writes(gpio::BsrrC::reg.address(), 1u << 6, from), 1u) << "PC6 set";
   std::size_t adstarts = 0;
   for (const test::Write& w : hw.writes_since(from)) {
@@ -103,9 +103,9 @@ TEST_F(StmBoardTick, ApplyOutputsWritesTheBridgeDutyForTheMeasuredSupplyAndTheCo
   outputs.contact_line = false;
   const std::size_t from2 = hw.log_size();
   tick_at(75);
-  // -6 / 24.005 x 4250 = -1062.3 -> -1062: CCR1 = (4250 - 1062) / 2 = 1594, CCR2 = 2656.
-  EXPECT_EQ(hw.peek(tim1::Ccr1::reg), 1594u);
-  EXPECT_EQ(hw.peek(tim1::Ccr2::reg), 2656u);
+  // -6 / 20.007 x 4250 = -1274.54 -> -1275: CCR1 = (4250 - 1275) / 2 = 1487, CCR2 = 2762.
+  EXPECT_EQ(hw.peek(tim1::Ccr1::reg), 1487u);
+  EXPECT_EQ(hw.peek(tim1::Ccr2::reg), 2762u);
   EXPECT_EQ(hw.count_writes(gpio::BsrrC::reg.address(), 1u << (16 + 6), from2), 1u) << "PC6 reset";
 }
 
