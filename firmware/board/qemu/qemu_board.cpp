@@ -1,10 +1,11 @@
 // The QEMU mps2-an386 board (qemu_board.hpp): registers in cmsdk_uart.hpp, cmsdk_timer.hpp,
-// ../cortex_m/nvic.hpp; the vector entries are startup.cpp's weak palp_irq_* names, defined here.
+// ../cortex_m/nvic.hpp, PRIMASK/WFI in ../cortex_m/cpu.hpp; the vector entries are startup.cpp's weak palp_irq_* names, defined here.
 #include "qemu_board.hpp"
 
 #include "board.hpp"
 #include "cmsdk_timer.hpp"
 #include "cmsdk_uart.hpp"
+#include "cpu.hpp"
 #include "nvic.hpp"
 
 #ifndef PALP_GIT_HASH
@@ -27,17 +28,9 @@ constexpr std::uint32_t kClocksPerUs = timer::kClock_Hz / 1'000'000u;
 QemuBoard* g_board = nullptr;  // the one board, for the interrupt handlers
 
 /// Masks every interrupt (PRIMASK) for its lifetime and restores the previous state: the few
-/// read-modify-writes that an interrupt could split.
-class IrqLock {
- public:
-  IrqLock() { asm volatile("mrs %0, primask\n cpsid i" : "=r"(primask_)::"memory"); }
-  ~IrqLock() { asm volatile("msr primask, %0" ::"r"(primask_) : "memory"); }
-  IrqLock(const IrqLock&) = delete;
-  IrqLock& operator=(const IrqLock&) = delete;
-
- private:
-  std::uint32_t primask_ = 0;
-};
+/// read-modify-writes that an interrupt could split (board/cortex_m/cpu.hpp).
+board::CortexM g_cpu;
+using IrqLock = board::InterruptLock<board::CortexM>;
 
 std::uint32_t link_state() { return uart::reg(kLink, uart::kState); }
 
@@ -165,7 +158,7 @@ void QemuBoard::release_tick() {
 // ---- the clock ----------------------------------------------------------------------------------
 
 std::uint64_t QemuBoard::now_clocks() {
-  const IrqLock lock;  // the main loop and the tick both extend the count
+  const IrqLock lock(g_cpu);  // the main loop and the tick both extend the count
   const std::uint32_t value = timer::reg(kClock, timer::kValue);
   clock_total_ += clock_last_ - value;  // a down-counter over 2^32 clocks: modular difference
   clock_last_ = value;
@@ -177,7 +170,7 @@ std::uint64_t QemuBoard::now_us() {
   // is not a silence of the host), read together with the interrupts masked; a drop counted
   // after an earlier read can take back time that read already gave, so the clock holds its
   // last value until it passes it again (monotonic, as the watchdog needs)
-  const IrqLock lock;
+  const IrqLock lock(g_cpu);
   const std::uint64_t us = (now_clocks() - dropped_clocks_) / kClocksPerUs;
   if (us > last_us_) last_us_ = us;
   return last_us_;
@@ -201,7 +194,7 @@ std::size_t QemuBoard::link_read(std::uint8_t* bytes, std::size_t size) {
   std::size_t n = 0;
   while (n < size && rx_.pop(bytes[n])) ++n;
   if (rx_paused_ && !rx_.full()) {
-    const IrqLock lock;
+    const IrqLock lock(g_cpu);
     rx_paused_ = false;
     uart::reg(kLink, uart::kCtrl) |= uart::kCtrlRxIrqEnable;
     // a byte that arrived while the interrupt was off raised none: take it through the handler
@@ -215,7 +208,7 @@ std::size_t QemuBoard::link_write(const std::uint8_t* bytes, std::size_t size) {
   while (n < size) {
     if ((link_state() & uart::kStateTxFull) != 0) {
       {  // QEMU's chardev is busy: arm the transmit interrupt, then look again
-        const IrqLock lock;
+        const IrqLock lock(g_cpu);
         uart::reg(kLink, uart::kCtrl) |= uart::kCtrlTxIrqEnable;
       }
       if ((link_state() & uart::kStateTxFull) != 0) break;
@@ -235,9 +228,9 @@ void QemuBoard::on_tx_irq() {
 void QemuBoard::idle(app::HasWork has_work, void* ctx) {
   // with interrupts masked, so an interrupt between the check and the WFI still wakes it (WFI
   // wakes on a pending interrupt whatever PRIMASK says; it is taken at the cpsie)
-  asm volatile("cpsid i" ::: "memory");
-  if (rx_.empty() && !has_work(ctx)) asm volatile("dsb\n wfi" ::: "memory");
-  asm volatile("cpsie i" ::: "memory");
+  g_cpu.disable_interrupts();
+  if (rx_.empty() && !has_work(ctx)) g_cpu.wait_for_interrupt();
+  g_cpu.enable_interrupts();
 }
 
 void QemuBoard::enter_bootloader() { board::exit(kBootloaderExitCode); }
