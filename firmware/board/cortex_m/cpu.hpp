@@ -2,10 +2,11 @@
 // restore every interrupt), WFI, and the DSB/ISB barriers; as a policy class, so a board written
 // as a template (the STM32G474's StmBoardT) runs on the host with a fake that records the calls.
 //
-// Sources: [ARM] ARMv7-M Architecture Reference Manual (ARM DDI 0403E): B1.4.3 PRIMASK (CPSID i /
-// CPSIE i, MRS/MSR), A7.7.261 WFI (a pending interrupt wakes it even while PRIMASK masks it: the
-// interrupt is taken at the CPSIE), A3.8.3 DSB/ISB; [GUG] Cortex-M4 Devices Generic User Guide
-// (ARM DUI 0553) 4.2.9 (DSB/ISB after masking an interrupt in the NVIC).
+// Sources: [ARM] ARMv7-M Architecture Reference Manual (ARM DDI 0403E): the special-purpose mask
+// register PRIMASK (CPSID i / CPSIE i, MRS/MSR), the WFI instruction and its wake-up rule (a
+// pending interrupt that PRIMASK masks still ends the sleep; it is taken at the CPSIE), the DSB and
+// ISB barriers; [GUG] Cortex-M4 Devices Generic User Guide (ARM DUI 0553) 3.12.11 (WFI) and 4.2.9
+// (DSB/ISB after masking an interrupt in the NVIC).
 #pragma once
 
 #include <cstdint>
