@@ -5,8 +5,8 @@
 // Sources: [ARM] ARMv7-M Architecture Reference Manual (ARM DDI 0403E): the special-purpose mask
 // register PRIMASK (CPSID i / CPSIE i, MRS/MSR), the WFI instruction and its wake-up rule (a
 // pending interrupt that PRIMASK masks still ends the sleep; it is taken at the CPSIE), the DSB and
-// ISB barriers; [GUG] Cortex-M4 Devices Generic User Guide (ARM DUI 0553), its WFI instruction page and 4.2.9
-// (DSB/ISB after masking an interrupt in the NVIC).
+// ISB barriers; [GUG] Cortex-M4 Devices Generic User Guide (ARM DUI 0553): its WFI page, and
+// 4.2.9 (DSB/ISB after masking an interrupt in the NVIC).
 #pragma once
 
 #include <cstdint>
