@@ -43,7 +43,9 @@ class BoardHardware {
   std::uint32_t peek(const Register& reg) const { return rf.peek(reg); }
   std::uint32_t peek(std::uint32_t address) const { return rf.peek({"", "", address, 0, {}}); }
   void poke(const Register& reg, std::uint32_t value) { rf.poke(reg, value); }
-  void poke(std::uint32_t address, std::uint32_t value) { rf.poke({"", "", address, 0, {}}, value); }
+  void poke(std::uint32_t address, std::uint32_t value) {
+    rf.poke({"", "", address, 0, {}}, value);
+  }
   std::uint32_t field(const Register& reg, const Field& f) const { return f.decode(rf.peek(reg)); }
 
   /// The writes logged since `from` (an index into the log).

@@ -83,7 +83,7 @@ TEST_F(StmBoardTick, OneEndOfSequenceInterruptDeliversTheInputsOfTheKnownCodes) 
 
 TEST_F(StmBoardTick, ApplyOutputsWritesTheBridgeDutyForTheMeasuredSupplyAndTheContactLine) {
   ASSERT_TRUE(board.start_tick(20'000, handler()));
-  hw.poke(adc::Jdr2::adc1, 1882);  // 1882 x 3.3 / 4096 x 108.2 / 8.2 = 20.007 V (not the nominal 24)
+  hw.poke(adc::Jdr2::adc1, 1882);  // 1882 x 3.3 / 4096 x 108.2 / 8.2 = 20.007 V, not 24 V
   outputs.v_coil_V = 12.0f;
   outputs.contact_line = true;
   const std::size_t from = hw.log_size();

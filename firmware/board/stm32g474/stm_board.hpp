@@ -221,7 +221,9 @@ class StmBoardT {
     if (tick_.run == nullptr) return;
     tick_now_us_ = clock_us();
     const std::uint64_t due = (tick_now_us_ - grid_start_us_) / period_us_ + 1;
-    if (due > ticks_counted_ + 1) missed_ticks_ += static_cast<std::uint32_t>(due - ticks_counted_ - 1);
+    if (due > ticks_counted_ + 1) {
+      missed_ticks_ += static_cast<std::uint32_t>(due - ticks_counted_ - 1);
+    }
     ticks_counted_ = std::max(due, ticks_counted_ + 1);
     tick_.run(tick_.ctx);
   }
@@ -264,7 +266,9 @@ class StmBoardT {
   std::uint64_t now_us() { return clock_us(); }
 
   // ---- the link --------------------------------------------------------------------------------
-  std::size_t link_read(std::uint8_t* bytes, std::size_t size) { return link_.read_bytes(bytes, size); }
+  std::size_t link_read(std::uint8_t* bytes, std::size_t size) {
+    return link_.read_bytes(bytes, size);
+  }
   std::size_t link_write(const std::uint8_t* bytes, std::size_t size) {
     const std::size_t n = link_.write_bytes(bytes, size);
     if (n < size) {  // the FIFO is full: its interrupt wakes idle() when it has room
