@@ -92,7 +92,7 @@ class Device {
   static_assert(TxCapacity >= 2 * proto::usb::kBulkPacketSize, "the send ring holds 2 packets");
 
  public:
-  explicit Device(H& hw) : hw_(hw) {}
+  explicit Device(H& hardware) : hw_(hardware) {}
 
   /// Connects to the bus (the D+ pull-up); the host resets the device and enumerates it.
   void start() { hw_.connect(true); }
