@@ -305,6 +305,39 @@ TEST(UsbDeviceRequests, HidIdleAndSetReportFeedTheStream) {
   EXPECT_EQ(rig.device.sending_pipe(), StreamPipe::hid);
 }
 
+TEST(UsbDeviceRequests, SetReportWaitsForRingRoomAndABusResetDropsIt) {
+  Rig<128, 2048> rig;  // a receive ring of two packets
+  rig.configure();
+  const std::vector<std::uint8_t> packet(64, 0x33);
+  ASSERT_EQ(rig.bus.out(5, 1, packet.data(), 64), Handshake::ack);
+  rig.device.service();
+  // 64 bytes waiting, 64 promised to an armed endpoint: no room for a report
+  const std::vector<std::uint8_t> report(64, 0x44);
+  ASSERT_EQ(rig.bus.setup(5, {0x21, 0x09, 0x0200, 1, 64}), Handshake::ack);
+  rig.device.service();
+  ASSERT_EQ(rig.bus.out(5, 0, report.data(), 64), Handshake::ack);
+  rig.device.service();
+  EXPECT_EQ(rig.bus.in(5, 0).handshake, Handshake::nak) << "status stage before the ring had room";
+  EXPECT_EQ(rig.drain(), packet);
+  const InAnswer status = rig.bus.in(5, 0);
+  EXPECT_EQ(status.handshake, Handshake::ack);
+  EXPECT_TRUE(status.data.empty());
+  rig.device.service();
+  EXPECT_EQ(rig.drain(), report);
+
+  // held again, then a bus reset: the transfer is gone, nothing is answered for it
+  ASSERT_EQ(rig.bus.out(5, 1, packet.data(), 64), Handshake::ack);
+  rig.device.service();
+  ASSERT_EQ(rig.bus.setup(5, {0x21, 0x09, 0x0200, 1, 64}), Handshake::ack);
+  rig.device.service();
+  ASSERT_EQ(rig.bus.out(5, 0, report.data(), 64), Handshake::ack);
+  rig.device.service();
+  rig.host.reset();
+  EXPECT_EQ(rig.drain(), packet);
+  EXPECT_FALSE(rig.bus.in_pending(0));
+  EXPECT_TRUE(rig.bus.violations().empty());
+}
+
 TEST(UsbDeviceRequests, SuspendAndResumeAreTrackedAndEnumerationGoesOn) {
   Rig<> rig;
   rig.configure();

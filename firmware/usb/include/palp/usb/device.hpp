@@ -106,8 +106,8 @@ class Device {
   /// endpoints.
   void service() {
     for (Event e = hw_.poll(); e.kind != EventKind::none; e = hw_.poll()) handle(e);
-    resume_rx();
     finish_held_set_report();
+    resume_rx();
     pump_tx();
   }
 
@@ -165,6 +165,7 @@ class Device {
     state_ = DeviceState::default_state;
     suspended_ = false;
     control_ = Control::idle;
+    held_set_report_ = false;  // its transfer died with the reset
     pending_address_ = -1;
     close_stream_endpoints();
   }
@@ -503,9 +504,10 @@ class Device {
     return room > armed * kPacket ? room - armed * kPacket : 0;
   }
 
-  // Arms each stream OUT endpoint that is idle, not halted, when a packet's room is free for it.
+  // Arms each stream OUT endpoint that is idle, not halted, when a packet's room is free for it;
+  // a held SET_REPORT (already received, its host waiting) gets the room first.
   void resume_rx() {
-    if (!configured()) return;
+    if (!configured() || held_set_report_) return;
     for (std::uint8_t n = 1; n < kEndpoints; ++n) {
       if (armed_[n] || halted_out_[n] || halted_in_[n]) continue;
       if (rx_room_unreserved() < kPacket) {
