@@ -1,23 +1,31 @@
-// A Device<PacketBus> with its host (host.hpp), and the steps most tests start from: attach,
-// enumerate to the Configured state at address 5.
+// A Device over a bus's hardware with its host (host.hpp), and the steps most tests start from:
+// attach, enumerate to the Configured state at address 5. Bus is PacketBus (packet_bus.hpp, the
+// stand-in) or, once usbfsdev's model is in the tree, FsdevBus (fsdev_bus.hpp): the typed tests
+// run on every bus in Buses.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 #include "host.hpp"
 #include "packet_bus.hpp"
 #include "palp/usb/device.hpp"
+#ifdef PALP_USB_TESTS_FSDEV
+#include "fsdev_bus.hpp"
+#endif
 
 namespace palp::usb::test {
 
-template <std::size_t Rx = 1024, std::size_t Tx = 2048>
+template <class Bus, std::size_t Rx = 1024, std::size_t Tx = 2048>
 struct Rig {
-  PacketBus bus;
-  Device<PacketBus, Rx, Tx> device{bus};
-  Host host{bus, [this] { device.service(); }};
+  Bus bus;
+  Device<typename Bus::Hardware, Rx, Tx> device{bus.hardware()};
+  Host<Bus> host{bus, [this] { device.service(); }};
 
   Rig() {
     device.start();
@@ -40,6 +48,20 @@ struct Rig {
       out.insert(out.end(), chunk, chunk + n);
     device.service();  // as the board does after link_read: paused OUT endpoints re-arm
     return out;
+  }
+};
+
+#ifdef PALP_USB_TESTS_FSDEV
+using Buses = ::testing::Types<PacketBus, FsdevBus>;
+#else
+using Buses = ::testing::Types<PacketBus>;
+#endif
+
+/// Names the typed tests' instances by their bus.
+struct BusName {
+  template <class Bus>
+  static std::string GetName(int) {
+    return std::is_same_v<Bus, PacketBus> ? "PacketBus" : "Fsdev";
   }
 };
 

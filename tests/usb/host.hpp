@@ -1,6 +1,6 @@
 // The host's side of the device core's tests: control transfers, bulk and interrupt packets
-// played on a PacketBus (packet_bus.hpp) the way a host controller does, running the device's
-// service() (its USB interrupt) after every bus event. A transfer records every data packet's
+// played on a bus (packet_bus.hpp's stand-in, or fsdev_bus.hpp's FSDEV model) the way a host
+// controller does, running the device's service() (its USB interrupt) after every bus event. A transfer records every data packet's
 // size, so tests can see a zero-length packet where the rules ask for one and nowhere else.
 #pragma once
 
@@ -22,11 +22,12 @@ struct ControlResult {
   std::vector<std::size_t> packets;  ///< each data packet's size, in order (IN)
 };
 
+template <class Bus>
 class Host {
  public:
   /// `service` runs the device's interrupt handler; `naks_allowed` is how many NAKs in a row a
   /// transaction takes before the host gives up (a timeout).
-  Host(PacketBus& bus, std::function<void()> service, int naks_allowed = 8)
+  Host(Bus& bus, std::function<void()> service, int naks_allowed = 8)
       : bus_(bus), service_(std::move(service)), naks_allowed_(naks_allowed) {}
 
   std::uint8_t address = 0;  ///< the address the host sends to
@@ -101,7 +102,7 @@ class Host {
     return r;
   }
 
-  PacketBus& bus_;
+  Bus& bus_;
   std::function<void()> service_;
   int naks_allowed_;
 };

@@ -34,6 +34,9 @@ struct InAnswer {
 class PacketBus {
  public:
   static constexpr std::size_t kEndpoints = 8;
+  /// What the device core drives: the bus itself.
+  using Hardware = PacketBus;
+  Hardware& hardware() { return *this; }
 
   // ---- contract 1: the device's side ---------------------------------------------------------
   Event poll() {

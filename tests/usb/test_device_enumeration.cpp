@@ -38,9 +38,19 @@ std::uint16_t le16(std::span<const std::uint8_t> s, std::size_t at) {
 
 constexpr std::uint8_t kDevice = 0x01, kConfiguration = 0x02, kString = 0x03, kBos = 0x0F;
 
-TEST(UsbDeviceEnumeration, WindowsSequenceGetsEveryDescriptorsExactBytesAndConfigures) {
-  Rig<> rig;
-  Host& host = rig.host;
+template <class Bus>
+class UsbDeviceEnumeration : public ::testing::Test {};
+TYPED_TEST_SUITE(UsbDeviceEnumeration, Buses, BusName);
+template <class Bus>
+class UsbDeviceControl : public ::testing::Test {};
+TYPED_TEST_SUITE(UsbDeviceControl, Buses, BusName);
+template <class Bus>
+class UsbDeviceRequests : public ::testing::Test {};
+TYPED_TEST_SUITE(UsbDeviceRequests, Buses, BusName);
+
+TYPED_TEST(UsbDeviceEnumeration, WindowsSequenceGetsEveryDescriptorsExactBytesAndConfigures) {
+  Rig<TypeParam> rig;
+  auto& host = rig.host;
   ASSERT_TRUE(rig.bus.connected());
 
   // 1. GET_DESCRIPTOR(DEVICE, 64) at address 0, one packet read, then a second bus reset
@@ -129,8 +139,8 @@ TEST(UsbDeviceEnumeration, WindowsSequenceGetsEveryDescriptorsExactBytesAndConfi
   EXPECT_TRUE(rig.bus.violations().empty()) << rig.bus.violations().front();
 }
 
-TEST(UsbDeviceControl, ZeroLengthPacketExactlyWhenTheReplyIsShortAndWholePackets) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceControl, ZeroLengthPacketExactlyWhenTheReplyIsShortAndWholePackets) {
+  Rig<TypeParam> rig;
   rig.configure();
   // GET_REPORT(Input) answers one 64-byte report (palp/protocol/usb.hpp kHidReportSize)
   const auto get_report = [](std::uint16_t w_length) {
@@ -155,8 +165,8 @@ TEST(UsbDeviceControl, ZeroLengthPacketExactlyWhenTheReplyIsShortAndWholePackets
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceControl, UnknownRequestStallsAndTheNextSetupRecovers) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceControl, UnknownRequestStallsAndTheNextSetupRecovers) {
+  Rig<TypeParam> rig;
   const std::vector<SetupPacket> refused = {
       {0x80, 0x33, 0, 0, 8},                           // unknown standard request
       {0xC0, kMsOs20VendorCode, 0, 8, 16},             // MS OS 2.0 wIndex 8 (alt. enumeration)
@@ -194,8 +204,8 @@ TEST(UsbDeviceControl, UnknownRequestStallsAndTheNextSetupRecovers) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceControl, SetAddressTakesEffectOnlyAfterItsStatusStage) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceControl, SetAddressTakesEffectOnlyAfterItsStatusStage) {
+  Rig<TypeParam> rig;
   ASSERT_EQ(rig.bus.setup(0, set_address(42)), Handshake::ack);
   rig.device.service();
   EXPECT_EQ(rig.bus.address(), 0) << "applied before the status stage";
@@ -213,8 +223,8 @@ TEST(UsbDeviceControl, SetAddressTakesEffectOnlyAfterItsStatusStage) {
   EXPECT_EQ(rig.host.control_in(get_descriptor(kDevice, 0, 18)).outcome, Outcome::ok);
 }
 
-TEST(UsbDeviceControl, HostEndingTheDataStageEarlyCompletesTheTransfer) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceControl, HostEndingTheDataStageEarlyCompletesTheTransfer) {
+  Rig<TypeParam> rig;
   // a 64-byte configuration block asked with wLength 255: status after the first packet,
   // before the device's ZLP is taken
   const ControlResult r = rig.host.control_in(get_descriptor(kConfiguration, 0, 255), 1);
@@ -226,8 +236,8 @@ TEST(UsbDeviceControl, HostEndingTheDataStageEarlyCompletesTheTransfer) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceControl, BusResetMidTransferStartsOverAtAddressZero) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceControl, BusResetMidTransferStartsOverAtAddressZero) {
+  Rig<TypeParam> rig;
   rig.configure();
   ASSERT_EQ(rig.bus.setup(5, get_descriptor(kConfiguration, 0, 255)), Handshake::ack);
   rig.device.service();
@@ -241,8 +251,8 @@ TEST(UsbDeviceControl, BusResetMidTransferStartsOverAtAddressZero) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceRequests, GetStatusAndConfigurationAndInterfaceAnswerTheState) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceRequests, GetStatusAndConfigurationAndInterfaceAnswerTheState) {
+  Rig<TypeParam> rig;
   ASSERT_EQ(rig.host.control_out(set_address(5)).outcome, Outcome::ok);
   rig.host.address = 5;
   EXPECT_EQ(rig.host.control_in({0x80, 0x08, 0, 0, 1}).data, std::vector<std::uint8_t>{0});
@@ -265,8 +275,8 @@ TEST(UsbDeviceRequests, GetStatusAndConfigurationAndInterfaceAnswerTheState) {
   EXPECT_EQ(rig.device.rx_waiting(), 0u);
 }
 
-TEST(UsbDeviceRequests, EndpointHaltStallsAndClearingItResetsTheDataToggle) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceRequests, EndpointHaltStallsAndClearingItResetsTheDataToggle) {
+  Rig<TypeParam> rig;
   rig.configure();
   const std::uint8_t data[5] = {1, 2, 3, 4, 0};
   ASSERT_EQ(rig.bus.out(5, 1, data, sizeof data), Handshake::ack);
@@ -293,8 +303,8 @@ TEST(UsbDeviceRequests, EndpointHaltStallsAndClearingItResetsTheDataToggle) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceRequests, HidIdleAndSetReportFeedTheStream) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceRequests, HidIdleAndSetReportFeedTheStream) {
+  Rig<TypeParam> rig;
   rig.configure();
   EXPECT_EQ(rig.host.control_out({0x21, 0x0A, 0x7D00, 1, 0}).outcome, Outcome::ok);  // 500 ms
   EXPECT_EQ(rig.host.control_in({0xA1, 0x02, 0, 1, 1}).data, std::vector<std::uint8_t>{0x7D});
@@ -305,8 +315,8 @@ TEST(UsbDeviceRequests, HidIdleAndSetReportFeedTheStream) {
   EXPECT_EQ(rig.device.sending_pipe(), StreamPipe::hid);
 }
 
-TEST(UsbDeviceRequests, SetReportWaitsForRingRoomAndABusResetDropsIt) {
-  Rig<128, 2048> rig;  // a receive ring of two packets
+TYPED_TEST(UsbDeviceRequests, SetReportWaitsForRingRoomAndABusResetDropsIt) {
+  Rig<TypeParam, 128, 2048> rig;  // a receive ring of two packets
   rig.configure();
   const std::vector<std::uint8_t> packet(64, 0x33);
   ASSERT_EQ(rig.bus.out(5, 1, packet.data(), 64), Handshake::ack);
@@ -338,8 +348,8 @@ TEST(UsbDeviceRequests, SetReportWaitsForRingRoomAndABusResetDropsIt) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceRequests, SuspendAndResumeAreTrackedAndEnumerationGoesOn) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceRequests, SuspendAndResumeAreTrackedAndEnumerationGoesOn) {
+  Rig<TypeParam> rig;
   rig.configure();
   rig.bus.suspend();
   rig.device.service();

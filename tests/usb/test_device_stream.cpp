@@ -140,8 +140,12 @@ void host_talks_on(R& rig, std::uint8_t number) {
   rig.drain();
 }
 
-TEST(UsbDeviceStream, BulkOutOfEverySize0To4096ArrivesWhole) {
-  Rig<> rig;
+template <class Bus>
+class UsbDeviceStream : public ::testing::Test {};
+TYPED_TEST_SUITE(UsbDeviceStream, Buses, BusName);
+
+TYPED_TEST(UsbDeviceStream, BulkOutOfEverySize0To4096ArrivesWhole) {
+  Rig<TypeParam> rig;
   rig.configure();
   for (std::size_t n = 0; n <= 4096; ++n) {
     const auto bytes = pattern(n, static_cast<std::uint32_t>(n));
@@ -158,8 +162,8 @@ TEST(UsbDeviceStream, BulkOutOfEverySize0To4096ArrivesWhole) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceStream, BulkInOfEverySize0To4096EndsWithAShortOrZeroLengthPacket) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceStream, BulkInOfEverySize0To4096EndsWithAShortOrZeroLengthPacket) {
+  Rig<TypeParam> rig;
   rig.configure();
   host_talks_on(rig, kBulk);
   for (std::size_t n = 0; n <= 4096; ++n) {
@@ -176,8 +180,8 @@ TEST(UsbDeviceStream, BulkInOfEverySize0To4096EndsWithAShortOrZeroLengthPacket) 
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceStream, FramesBothWaysOverBulkPassTheProtocolsFrameReader) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceStream, FramesBothWaysOverBulkPassTheProtocolsFrameReader) {
+  Rig<TypeParam> rig;
   rig.configure();
   const Frames frames = make_frames();
   // host -> device: one write per frame, as the SDK writes them
@@ -210,8 +214,8 @@ TEST(UsbDeviceStream, FramesBothWaysOverBulkPassTheProtocolsFrameReader) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceStream, FramesOverHidReportsArePaddedOnlyAfterADelimiter) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceStream, FramesOverHidReportsArePaddedOnlyAfterADelimiter) {
+  Rig<TypeParam> rig;
   rig.configure();
   host_talks_on(rig, kHid);
   const Frames frames = make_frames();
@@ -254,8 +258,8 @@ TEST(UsbDeviceStream, FramesOverHidReportsArePaddedOnlyAfterADelimiter) {
   EXPECT_EQ(at_device.rejects, 0);
 }
 
-TEST(UsbDeviceStream, HidReportWaitsForTheEndOfAFrame) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceStream, HidReportWaitsForTheEndOfAFrame) {
+  Rig<TypeParam> rig;
   rig.configure();
   host_talks_on(rig, kHid);
   const std::uint8_t start[] = {0x11, 0x22, 0x33};
@@ -274,8 +278,8 @@ TEST(UsbDeviceStream, HidReportWaitsForTheEndOfAFrame) {
   EXPECT_EQ(rig.device.tx_waiting(), 1u);  // 0x55 waits for its frame's end
 }
 
-TEST(UsbDeviceStream, SlowAppLosesNothingTheHostIsHeldOffInstead) {
-  Rig<128, 2048> rig;  // a receive ring of two packets
+TYPED_TEST(UsbDeviceStream, SlowAppLosesNothingTheHostIsHeldOffInstead) {
+  Rig<TypeParam, 128, 2048> rig;  // a receive ring of two packets
   rig.configure();
   const auto bytes = pattern(4096, 4);
   std::vector<std::uint8_t> got;
@@ -303,8 +307,8 @@ TEST(UsbDeviceStream, SlowAppLosesNothingTheHostIsHeldOffInstead) {
   EXPECT_TRUE(rig.bus.violations().empty());
 }
 
-TEST(UsbDeviceStream, NothingIsSentBeforeTheHostTalksThenTheLastTalkedInterfaceSends) {
-  Rig<> rig;
+TYPED_TEST(UsbDeviceStream, NothingIsSentBeforeTheHostTalksThenTheLastTalkedInterfaceSends) {
+  Rig<TypeParam> rig;
   rig.configure();
   const Frames frames = make_frames();
   const std::vector<std::uint8_t> first(frames.wire.begin(),
