@@ -1,7 +1,7 @@
 // A Device over a bus's hardware with its host (host.hpp), and the steps most tests start from:
 // attach, enumerate to the Configured state at address 5. Bus is PacketBus (packet_bus.hpp, the
-// stand-in) or, once usbfsdev's model is in the tree, FsdevBus (fsdev_bus.hpp): the typed tests
-// run on every bus in Buses.
+// contract at the packet level) or FsdevBus (fsdev_bus.hpp, the FSDEV driver on the register
+// model, when the tree has it): the typed tests run on every bus in Buses.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -1,15 +1,14 @@
-// STAND-IN until helper usbfsdev's register-level FSDEV model (tests/stm32/fsdev_model.hpp) is
-// merged: a UsbHardware (contract 1, firmware/usb/include/palp/usb/hardware.hpp) for the device
-// core's tests that plays the bus at the packet level, with the host's side as calls: a SETUP,
-// an IN token, an OUT packet, a bus reset, suspend/resume. Each endpoint answers as the
-// contract says the hardware does: an IN token gets the packet the device wrote (ACK), else NAK,
-// or STALL; an OUT packet is taken (ACK) only when the device armed the endpoint, else NAK; a
-// token to another address than the device's gets no answer. It also keeps each endpoint's data
-// toggles, and records what the device did that contract 1 forbids (violations()), so a test
-// can assert the device never did any.
+// A UsbHardware (contract 1, firmware/usb/include/palp/usb/hardware.hpp) for the device core's
+// tests that plays the bus at the packet level, with the host's side as calls: a SETUP, an IN
+// token, an OUT packet, a bus reset, suspend/resume. Each endpoint answers as the contract says
+// the hardware does: an IN token gets the packet the device wrote (ACK), else NAK, or STALL; an
+// OUT packet is taken (ACK) only when the device armed the endpoint, else NAK; a token to another
+// address than the device's gets no answer. It also keeps each endpoint's data toggles, and
+// records what the device did that contract 1 forbids (violations()), so a test can assert the
+// device never did any.
 //
-// The enumeration tests move onto the FSDEV model once it is merged (the lead's call); these
-// tests then check the register-level behaviour too.
+// Written as the stand-in until usbfsdev's register-level FSDEV model was merged; the typed
+// tests now run on both (fsdev_bus.hpp), this one checking the contract itself.
 #pragma once
 
 #include <algorithm>
