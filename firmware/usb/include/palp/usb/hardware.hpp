@@ -12,6 +12,12 @@
 // After a `reset` event the hardware has endpoint 0 open (control, max packet 64, ready to take a
 // SETUP) and address 0; every other endpoint is closed. The core re-opens the others on
 // SET_CONFIGURATION.
+//
+// Endpoint 0 always takes a SETUP (facts §1.11), whatever its state, and the SETUP cancels what
+// ep0 had pending: an IN packet written but not taken, an armed OUT, a STALL. The core answers
+// from the setup event on (write_in, arm_out or stall on ep0). The status stage the host sends
+// after an IN data stage arrives as an `out` event on ep0 with 0 bytes (the core arms ep0 OUT
+// for it). poll() reports events in the order they happened.
 #pragma once
 
 #include <concepts>
@@ -46,7 +52,9 @@ struct SetupPacket {
 /// A UsbHardware H has:
 ///   Event poll();                  the next pending event (kind none: nothing pending)
 ///   void open_endpoint(std::uint8_t number, EndpointType type, std::uint16_t max_packet);
-///                                  both directions of `number`, DATA0 toggles, OUT not yet armed
+///                                  both directions of `number`: DATA0 toggles, no STALL, no IN
+///                                  packet pending, OUT not armed (NAK) until arm_out; opening an
+///                                  open endpoint again does the same (CLEAR_FEATURE(HALT))
 ///   std::size_t read_out(std::uint8_t number, std::uint8_t* bytes, std::size_t capacity);
 ///                                  the last SETUP/OUT packet's bytes on that endpoint (at most
 ///                                  capacity copied; returns the count copied)
@@ -54,8 +62,10 @@ struct SetupPacket {
 ///                                  accept the next OUT packet (RX VALID); until then the
 ///                                  hardware NAKs it (flow control)
 ///   void write_in(std::uint8_t number, const std::uint8_t* bytes, std::size_t size);
-///                                  one IN packet (size <= max_packet; 0 = a zero-length packet),
-///                                  in_complete follows when the host took it
+///                                  one IN packet (size <= max_packet; 0 = a zero-length packet,
+///                                  bytes may then be null), copied before the call returns;
+///                                  in_complete follows when the host took it. The core writes
+///                                  the next only after that in_complete (or a re-open / SETUP)
 ///   void stall(std::uint8_t number);
 ///                                  STALL both directions; on ep0 until the next SETUP, on the
 ///                                  others until the endpoint is opened again (which also resets
