@@ -1,5 +1,5 @@
 // The device core on the STM32G474's FSDEV driver (firmware/board/stm32g474/usb_fsdev.hpp) over
-// helper usbfsdev's register-level model of the peripheral (tests/stm32/fsdev_model.hpp): the
+// the register-level model of the peripheral (tests/stm32/fsdev_model.hpp): the
 // same host calls and observations as PacketBus (packet_bus.hpp), answered by the model's
 // registers and PMA. Built when the tree has the model (tests/usb/CMakeLists.txt: target
 // palp_stm32_fsdev_model), so every typed test runs on both buses.

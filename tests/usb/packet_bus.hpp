@@ -7,7 +7,7 @@
 // records what the device did that contract 1 forbids (violations()), so a test can assert the
 // device never did any.
 //
-// Written as the stand-in until usbfsdev's register-level FSDEV model was merged; the typed
+// Written as the stand-in before the register-level FSDEV model existed; the typed
 // tests now run on both (fsdev_bus.hpp), this one checking the contract itself.
 #pragma once
 

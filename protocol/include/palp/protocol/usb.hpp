@@ -34,6 +34,12 @@ namespace palp::proto::usb {
 inline constexpr std::uint16_t kVendorId = 0x1209;   ///< pid.codes (open-hardware VID)
 inline constexpr std::uint16_t kProductId = 0x0001;  ///< pid.codes test PID, until one is allocated
 
+/// The STM32's ROM DFU bootloader (ST's vendor ID and its DFU product ID; AN2606 family,
+/// ../shared/reference/usb-dfu-facts.md §5.1): the identity a board shows after the bootloader
+/// request, for flashing. host/udev/70-palp.rules gives both identities to the logged-in user.
+inline constexpr std::uint16_t kStBootloaderVendorId = 0x0483;
+inline constexpr std::uint16_t kStBootloaderProductId = 0xDF11;
+
 /// Interface 0: vendor-specific (class 0xFF), the byte stream over two bulk endpoints.
 inline constexpr std::uint8_t kVendorInterface = 0;
 inline constexpr std::uint8_t kVendorInterfaceClass = 0xFF;
