@@ -25,4 +25,14 @@ constexpr const char* board_name(BoardId board) {
   return "unknown";
 }
 
+/// Where the board's images start (byte 0 of the .bin): its flash. 0 for an unknown board.
+constexpr std::uint32_t board_image_address(BoardId board) {
+  switch (board) {
+    case BoardId::stm32g474: return 0x08000000u;  // stm32g474-facts.md §1.1 (stm32g474.ld)
+    case BoardId::qemu_mps2_an386: return 0x00000000u;  // the flash alias (mps2_an386.ld)
+    case BoardId::unknown: break;
+  }
+  return 0;
+}
+
 }  // namespace palp::proto
