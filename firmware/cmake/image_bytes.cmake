@@ -9,31 +9,31 @@
 # palp_crc32_*: CRC-32/ISO-HDLC, the protocol's CRC (protocol/include/palp/protocol/crc32.hpp):
 # reflected polynomial 0xEDB88320, state starts at 0xFFFFFFFF; palp_crc32_final XORs 0xFFFFFFFF.
 # A DFU suffix's dwCRC is the state without that XOR (usb-dfu-facts.md §6.1). Cost: about 2 µs a
-# byte (two math() calls), read in 4 KB chunks so no command copies a whole image.
-include_guard(GLOBAL)
+# byte (two math() calls; 0.4 s for the 74 KB QEMU image), read in 4 KB chunks so no command
+# copies a whole image.
 
 # Table T[n] of the byte-wise CRC, as variables PALP_CRC_T0 ... PALP_CRC_T255 (a variable look-up
-# per byte; list(GET) would re-parse a 256-entry list every byte).
-macro(palp_crc32_table)
-  if(NOT DEFINED PALP_CRC_T255)
-    foreach(n RANGE 255)
-      set(c ${n})
-      foreach(k RANGE 7)
-        math(EXPR low "${c} & 1")
-        if(low)
-          math(EXPR c "(${c} >> 1) ^ 0xEDB88320")
-        else()
-          math(EXPR c "${c} >> 1")
-        endif()
-      endforeach()
-      set(PALP_CRC_T${n} ${c})
-    endforeach()
-  endif()
-endmacro()
+# per byte; list(GET) would re-parse a 256-entry list every byte), made once, when this file is
+# included (in the including scope, so every function called from there sees it).
+foreach(_palp_n RANGE 255)
+  set(_palp_c ${_palp_n})
+  foreach(_palp_k RANGE 7)
+    math(EXPR _palp_low "${_palp_c} & 1")
+    if(_palp_low)
+      math(EXPR _palp_c "(${_palp_c} >> 1) ^ 0xEDB88320")
+    else()
+      math(EXPR _palp_c "${_palp_c} >> 1")
+    endif()
+  endforeach()
+  set(PALP_CRC_T${_palp_n} ${_palp_c})
+endforeach()
+unset(_palp_n)
+unset(_palp_c)
+unset(_palp_k)
+unset(_palp_low)
 
 # palp_crc32_update_hex(<state-var> <hex>): feeds the bytes of <hex> into the CRC state.
 function(palp_crc32_update_hex state_var hex)
-  palp_crc32_table()
   set(crc ${${state_var}})
   string(REGEX MATCHALL "[0-9a-fA-F][0-9a-fA-F]" bytes "${hex}")
   foreach(b IN LISTS bytes)
@@ -61,8 +61,17 @@ function(palp_crc32_update_file state_var file offset length)
   set(${state_var} ${crc} PARENT_SCOPE)
 endfunction()
 
+# palp_crc32_final(<out-var> <state>): the CRC as "0x%08x" text (what palp-proto prints).
 function(palp_crc32_final out_var state)
-  math(EXPR v "${state} ^ 0xFFFFFFFF" OUTPUT_FORMAT HEXADECIMAL)
+  math(EXPR v "${state} ^ 0xFFFFFFFF")
+  palp_hex32(v ${v})
+  set(${out_var} ${v} PARENT_SCOPE)
+endfunction()
+
+# palp_hex32(<out-var> <value>): "0x%08x".
+function(palp_hex32 out_var value)
+  palp_le_hex(le ${value} 4)
+  string(REGEX REPLACE "^(..)(..)(..)(..)$" "0x\\4\\3\\2\\1" v "${le}")
   set(${out_var} ${v} PARENT_SCOPE)
 endfunction()
 

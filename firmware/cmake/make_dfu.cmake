@@ -84,6 +84,6 @@ if(NOT written EQUAL file_size)
   message(FATAL_ERROR "${DFU}: ${written} bytes written, expected ${file_size}")
 endif()
 get_filename_component(name "${DFU}" NAME)
-math(EXPR crc_text "${crc}" OUTPUT_FORMAT HEXADECIMAL)
+palp_hex32(crc_text ${crc})
 message(STATUS "${name}: ${file_size} bytes, one element of ${image_size} bytes at ${ADDRESS}, "
                "suffix ${VID}:${PID} bcdDFU 0x011A dwCRC ${crc_text}")
