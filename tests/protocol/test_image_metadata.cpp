@@ -234,6 +234,28 @@ TEST(ImageFile, ATruncatedElfIsRefused) {
   EXPECT_EQ(extract_image(f).error, "ELF headers point outside the file (truncated?)");
 }
 
+// Every cut of the files above: refused with a reason, never read past the end (the asan build
+// runs these too).
+TEST(ImageFile, EveryTruncationOfAnElfBeforeItsSectionHeadersEndIsRefused) {
+  const auto full = small_elf();
+  for (std::size_t n = 4; n < 0x220 + 4 * 40; ++n) {
+    const std::vector<u8> cut(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(n));
+    EXPECT_NE(extract_image(cut).error, "") << n << " bytes";
+  }
+}
+
+TEST(ImageFile, NoTruncationOfADfuSeFileYieldsAnImageFromIt) {
+  const auto full = known_dfu();
+  for (std::size_t n = 0; n < full.size(); ++n) {
+    const std::vector<u8> cut(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(n));
+    const ImageBytes got = extract_image(cut);
+    EXPECT_TRUE(!got.error.empty() || got.container == ImageContainer::bin) << n << " bytes";
+    if (got.error.empty()) {
+      EXPECT_FALSE(parse(got.image).ok()) << n << " bytes";
+    }
+  }
+}
+
 TEST(ImageFile, OtherBytesAreTakenAsABinAndAnOversizedOneIsRefused) {
   const ImageBytes got = extract_image(known_image());
   EXPECT_EQ(got.container, ImageContainer::bin);
