@@ -89,7 +89,7 @@ ImageBytes from_elf(const std::vector<u8>& f) {
   return out;
 }
 
-// ---- DfuSe ---------------------------------------------------------------------------------------
+// ---- DfuSe ------------------------------------------------------------------------------------
 constexpr std::size_t kSuffix = 16, kPrefix = 11, kTargetPrefix = 274, kElementHeader = 8;
 
 bool has_dfu_suffix(const std::vector<u8>& f) {
@@ -130,7 +130,8 @@ ImageBytes from_dfu(const std::vector<u8>& f) {
   }
   const std::size_t element = target + kTargetPrefix;
   const u32 target_size = le32(f, target + 266), size = le32(f, element + 4);
-  if (target_size != kElementHeader + u64{size} || element + kElementHeader + u64{size} != n - kSuffix) {
+  if (target_size != kElementHeader + u64{size} ||
+      element + kElementHeader + u64{size} != n - kSuffix) {
     out.error = "DfuSe sizes disagree: target " + std::to_string(target_size) + " bytes, element " +
                 std::to_string(size) + " bytes, " + std::to_string(n - kSuffix - element) +
                 " bytes between the target prefix and the suffix";
@@ -192,6 +193,15 @@ ImageBytes read_image_file(const std::string& path, bool& file_error) {
     return out;
   }
   return extract_image(bytes);
+}
+
+std::string describe_load_address_problem(const ImageBytes& file, const ImageMetadata& m) {
+  const auto board = static_cast<BoardId>(m.board);
+  if (!file.has_load_address || board == BoardId::unknown ||
+      file.load_address == board_image_address(board))
+    return "";
+  return "load address " + hex32(file.load_address) + ", but " + board_name(board) +
+         " images start at " + hex32(board_image_address(board));
 }
 
 std::string format_image_metadata(const ImageMetadata& m) {

@@ -213,12 +213,9 @@ int cmd_image(int argc, char** argv) {
     std::fprintf(stderr, "palp-proto image: %s: %s\n", path, describe_image_problem(p).c_str());
     return 1;
   }
-  const auto board = static_cast<BoardId>(p.metadata.board);
-  if (file.has_load_address && board != BoardId::unknown &&
-      file.load_address != board_image_address(board)) {
-    std::fprintf(stderr, "palp-proto image: %s: load address %s, but %s images start at %s\n",
-                 path, hash_text(file.load_address).c_str(), board_name(board),
-                 hash_text(board_image_address(board)).c_str());
+  const std::string misplaced = describe_load_address_problem(file, p.metadata);
+  if (!misplaced.empty()) {
+    std::fprintf(stderr, "palp-proto image: %s: %s\n", path, misplaced.c_str());
     return 1;
   }
   std::printf("check: image_size and image_crc32 match the image\n");

@@ -129,7 +129,8 @@ TEST(ImageMetadata, ShortFilesAndOtherBytesAreNotImages) {
 TEST(ImageMetadata, AnUnknownLayoutAndAnUnfilledBlockAreNamed) {
   auto b = known_image();
   put16(b, 0x408, 2);
-  EXPECT_EQ(describe_image_problem(parse(b)), "unknown layout: metadata layout 2, this build reads layout 1");
+  EXPECT_EQ(describe_image_problem(parse(b)),
+            "unknown layout: metadata layout 2, this build reads layout 1");
   EXPECT_EQ(describe_image_problem(parse(known_image(false))),
             "not filled: image_size is 0: the post-build step (firmware/cmake/fill_metadata.cmake) "
             "did not run on this image");
@@ -167,6 +168,17 @@ TEST(ImageFile, ADfuSeFileYieldsItsElementAndAddress) {
   EXPECT_EQ(got.container, ImageContainer::dfu);
   EXPECT_EQ(got.load_address, 0x08000000u);
   EXPECT_EQ(got.image, known_image());
+}
+
+TEST(ImageFile, AnImageLoadedAwayFromItsBoardsFlashIsNamed) {
+  ImageBytes file = extract_image(known_dfu());
+  const ImageMetadata m = parse(file.image).metadata;
+  EXPECT_EQ(describe_load_address_problem(file, m), "");
+  file.load_address = 0;
+  EXPECT_EQ(describe_load_address_problem(file, m),
+            "load address 0x00000000, but stm32g474 images start at 0x08000000");
+  file.has_load_address = false;  // a .bin says nothing about where it goes
+  EXPECT_EQ(describe_load_address_problem(file, m), "");
 }
 
 TEST(ImageFile, ACorruptDfuSeFileIsASuffixCrcMismatchWithBothValues) {

@@ -14,12 +14,13 @@
 #endif
 
 namespace {
+using palp::proto::BoardId;
+using palp::proto::ImageMetadata;
 // The firmware version is the one the core reports in DeviceInfo (DeviceIdentity's defaults).
 constexpr palp::fw::DeviceIdentity kCore{};
 }  // namespace
 
-extern "C" {
-[[gnu::used, gnu::section(".palp_metadata")]] constinit const palp::proto::ImageMetadata palp_image_metadata =
-    palp::proto::make_image_metadata(palp::proto::BoardId::PALP_IMAGE_BOARD, kCore.fw_major,
-                                     kCore.fw_minor, kCore.fw_patch, PALP_GIT_HASH);
-}
+// External, unmangled: `nm` shows palp_image_metadata at the image's 0x400.
+extern "C" [[gnu::used, gnu::section(".palp_metadata")]] constinit const ImageMetadata
+    palp_image_metadata = palp::proto::make_image_metadata(
+        BoardId::PALP_IMAGE_BOARD, kCore.fw_major, kCore.fw_minor, kCore.fw_patch, PALP_GIT_HASH);

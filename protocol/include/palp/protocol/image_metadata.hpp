@@ -85,8 +85,10 @@ constexpr ImageMetadata make_image_metadata(BoardId board, u8 fw_major, u8 fw_mi
   m.protocol_major = kProtocolMajor;
   m.protocol_minor = kProtocolMinor;
   m.schema_hash = kSchemaHash;
-  for (std::size_t k = 0; git_hash != nullptr && k + 1 < sizeof m.git_hash && git_hash[k] != '\0'; ++k)
+  for (std::size_t k = 0; git_hash != nullptr && k + 1 < sizeof m.git_hash; ++k) {
+    if (git_hash[k] == '\0') break;
     m.git_hash[k] = git_hash[k];
+  }
   return m;
 }
 

@@ -39,6 +39,11 @@ ImageBytes extract_image(const std::vector<u8>& file);
 /// cannot be read sets `error` and `file_error`.
 ImageBytes read_image_file(const std::string& path, bool& file_error);
 
+/// Empty when the file's load address (ELF, DfuSe) is where the metadata's board starts its images
+/// (board_image_address) or the file carries none (bin) or the board is unknown; else one sentence:
+/// "load address 0x00000000, but stm32g474 images start at 0x08000000".
+std::string describe_load_address_problem(const ImageBytes& file, const ImageMetadata& m);
+
 /// The metadata as lines "name: value unit", e.g. "image_size: 74120 bytes".
 std::string format_image_metadata(const ImageMetadata& m);
 
