@@ -1,5 +1,6 @@
 // palp-proto: the protocol's own tool. Prints the version, schema and SPEC tables, writes the
-// golden vectors, decodes wire bytes, and runs the protocol demo (scripts/demo).
+// golden vectors, decodes wire bytes, prints a firmware image's metadata, and runs the protocol
+// demo (scripts/demo).
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "palp/protocol/examples.hpp"
+#include "palp/protocol/image_file.hpp"
 #include "palp/protocol/spec_tables.hpp"
 #include "palp/protocol/text.hpp"
 #include "palp/protocol/vectors.hpp"
@@ -33,10 +35,13 @@ commands:
                           OUT (fuzzing seeds), plus all message vectors as one stream
   decode [HEX ...]        decode wire bytes (hex, from the arguments or standard input) and
                           print every message or reject reason
+  image FILE              a firmware image's metadata (board, versions, size, CRC) from its
+                          .elf, .bin or .dfu, after checking its size and CRC-32
   demo                    walk through a handshake, programs, a sample batch and bad input
   help, --help, -h        this text
 
-exit codes: 0 success, 1 check failed or input rejected, 2 usage error, 3 file error.
+exit codes: 0 success, 1 check failed or input rejected (a corrupt image), 2 usage error,
+3 file error.
 )";
 
 bool read_file(const std::string& path, std::string& out) {
@@ -185,6 +190,38 @@ int cmd_decode(int argc, char** argv) {
   return decode_and_print(*bytes);
 }
 
+int cmd_image(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "palp-proto image: expected one file (.elf, .bin or .dfu)\n");
+    return 2;
+  }
+  const char* path = argv[2];
+  bool file_error = false;
+  const ImageBytes file = read_image_file(path, file_error);
+  if (!file.error.empty()) {
+    std::fprintf(stderr, "palp-proto image: %s: %s\n", path, file.error.c_str());
+    return file_error ? 3 : 1;
+  }
+  std::printf("file: %s (%s", path, image_container_name(file.container));
+  if (file.has_load_address) std::printf(", load address %s", hash_text(file.load_address).c_str());
+  std::printf(", %zu bytes of image)\n", file.image.size());
+  const ImageParse p = parse_image_metadata(file.image.data(), file.image.size());
+  if (p.error != ImageError::too_short && p.error != ImageError::no_magic &&
+      p.error != ImageError::unknown_layout)
+    std::fputs(format_image_metadata(p.metadata).c_str(), stdout);
+  if (!p.ok()) {
+    std::fprintf(stderr, "palp-proto image: %s: %s\n", path, describe_image_problem(p).c_str());
+    return 1;
+  }
+  const std::string misplaced = describe_load_address_problem(file, p.metadata);
+  if (!misplaced.empty()) {
+    std::fprintf(stderr, "palp-proto image: %s: %s\n", path, misplaced.c_str());
+    return 1;
+  }
+  std::printf("check: image_size and image_crc32 match the image\n");
+  return 0;
+}
+
 template <class M>
 std::vector<u8> wire_of(const M& m, u16 seq, u8 flags) {
   std::vector<u8> out(kMaxWireFrame);
@@ -324,6 +361,7 @@ int main(int argc, char** argv) {
   if (cmd == "vectors") return cmd_vectors(argc, argv);
   if (cmd == "seeds") return cmd_seeds(argc, argv);
   if (cmd == "decode") return cmd_decode(argc, argv);
+  if (cmd == "image") return cmd_image(argc, argv);
   if (cmd == "demo") return cmd_demo();
   std::fprintf(stderr, "palp-proto: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
   return 2;

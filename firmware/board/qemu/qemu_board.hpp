@@ -35,13 +35,14 @@
 #include "palp/app/board.hpp"
 #include "palp/fw/calibration.hpp"
 #include "palp/fw/spsc_queue.hpp"
+#include "palp/protocol/board_id.hpp"
 #include "float_plant.hpp"
 
 namespace palp::qemu {
 
 class QemuBoard {
  public:
-  static constexpr const char* kName = "qemu-mps2-an386";
+  static constexpr const char* kName = proto::board_name(proto::BoardId::qemu_mps2_an386);
   static constexpr const char* kSerial = "QEMU-AN386-0001";
   /// QEMU's exit status when the host asks for the bootloader.
   static constexpr int kBootloaderExitCode = 42;
