@@ -1,0 +1,346 @@
+# Bounds the stack an interrupt handler can use, from GCC's call-graph files, and fails past LIMIT
+# or wherever the bound cannot be known.
+#
+#   cmake -DCI_DIRS=<dir>[,<dir>...] -DROOT=<symbol> -DLIMIT=<bytes> [-DIMAGE=<a.elf>]
+#         [-DINDIRECT=<caller>-><target>[|<caller>-><target>...]] [-DCXXFILT=<c++filt>]
+#         [-DOBJDUMP=<arm-none-eabi-objdump>] -P check_isr_stack.cmake
+#
+# Input: the .ci files below CI_DIRS (the object directories of the image's targets), written by
+# `-fcallgraph-info=su` (GCC >= 10, VCG format): one node per function compiled, labelled with its
+# frame ("24 bytes (static)"), one edge per call left after optimisation (inlined calls are
+# gone; tail calls stay as edges, which over-counts), `__indirect_call` for a call through a
+# pointer, and nodes without a frame for functions compiled elsewhere. Titles are the symbols;
+# a function with internal linkage is "<file>:<symbol>". A symbol compiled in several objects
+# (inline functions, weak defaults) takes the largest frame and all the calls.
+#
+# The walk starts at ROOT (the vector entry's symbol, e.g. palp_irq_timer0) and takes, for each
+# function, its frame plus the deepest of its callees. It fails, naming the function and the call
+# path to it, when it meets
+#   - a function without a frame: compiled without -fcallgraph-info (libc, libgcc, libm) or not
+#     compiled at all (the call would not link);
+#   - a frame GCC calls "dynamic" (alloca, variable-length arrays); "dynamic,bounded" counts as
+#     its stated upper bound;
+#   - recursion (a function reached again while it is on the path);
+#   - an indirect call not resolved by INDIRECT. Each INDIRECT entry "<caller>-><target>" allows
+#     the indirect calls made in <caller> (the function holding the call after inlining) to reach
+#     <target>; both are demangled names without parameters, e.g.
+#     `palp::qemu::QemuBoard::on_tick_irq->palp::app::App<palp::qemu::QemuBoard>::tick_entry`.
+#     An entry naming no function in the graph is an error too (a stale list).
+# To the deepest path it adds the exception entry frame: on a Cortex-M4F the processor pushes
+# the extended frame when the interrupted code had the FPU context active (CONTROL.FPCA = 1):
+# R0-R3, R12, LR, PC, xPSR, S0-S15, FPSCR and a reserved word, 26 words = 104 B, plus 4 B when
+# it realigns SP to 8 bytes (CCR.STKALIGN) — ARMv7-M Architecture Reference Manual (DDI 0403E),
+# B1.5.7 "Stack alignment on exception entry" and B1.5.6 "Exception entry behavior": 108 B.
+# Not seen: interrupts that preempt ROOT (each adds its own bound), and what the frames of
+# hand-written assembly would be (none is on these paths; it would show as a missing frame).
+cmake_minimum_required(VERSION 3.25)
+
+set(exception_entry_frame 108)
+
+foreach(arg CI_DIRS ROOT LIMIT)
+  if(NOT DEFINED ${arg} OR "${${arg}}" STREQUAL "")
+    message(FATAL_ERROR "check_isr_stack: -D${arg}=... is required")
+  endif()
+endforeach()
+if(NOT LIMIT MATCHES "^[0-9]+$")
+  message(FATAL_ERROR "check_isr_stack: -DLIMIT=<bytes> must be a number (got '${LIMIT}')")
+endif()
+if(NOT DEFINED CXXFILT OR CXXFILT STREQUAL "")
+  find_program(CXXFILT NAMES arm-none-eabi-c++filt c++filt)
+endif()
+if(NOT CXXFILT)
+  message(FATAL_ERROR "arm-none-eabi-c++filt not found: run scripts/install-deps "
+                      "(package gcc-arm-none-eabi, which brings binutils-arm-none-eabi)")
+endif()
+
+if(DEFINED IMAGE AND NOT IMAGE STREQUAL "")
+  if(NOT EXISTS "${IMAGE}")
+    message(FATAL_ERROR "check_isr_stack: image ${IMAGE} does not exist")
+  endif()
+  if(NOT DEFINED OBJDUMP OR OBJDUMP STREQUAL "")
+    find_program(OBJDUMP arm-none-eabi-objdump)
+  endif()
+  if(NOT OBJDUMP)
+    message(FATAL_ERROR "arm-none-eabi-objdump not found: run scripts/install-deps "
+                        "(package gcc-arm-none-eabi, which brings binutils-arm-none-eabi)")
+  endif()
+endif()
+
+# ---- read the graph ------------------------------------------------------------------------------
+string(REPLACE "," ";" CI_DIRS "${CI_DIRS}")
+set(ci_files "")
+foreach(dir IN LISTS CI_DIRS)
+  if(NOT IS_DIRECTORY "${dir}")
+    message(FATAL_ERROR "check_isr_stack: object directory ${dir} does not exist")
+  endif()
+  file(GLOB_RECURSE found "${dir}/*.ci")
+  list(APPEND ci_files ${found})
+endforeach()
+if(ci_files STREQUAL "")
+  message(FATAL_ERROR "check_isr_stack: no .ci file below ${CI_DIRS} (compiled without "
+                      "-fcallgraph-info=su?)")
+endif()
+
+set(titles "")  # every function seen, defined or not
+foreach(ci IN LISTS ci_files)
+  file(STRINGS "${ci}" lines REGEX "^(node|edge): ")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^node: { title: \"([^\"]+)\" label: \"([^\"]*)\"")
+      set(title "${CMAKE_MATCH_1}")
+      set(label "${CMAKE_MATCH_2}")
+      if(NOT DEFINED "seen_${title}")
+        set("seen_${title}" TRUE)
+        list(APPEND titles "${title}")
+      endif()
+      if(label MATCHES "\\\\n([0-9]+) bytes \\(([a-z,]+)\\)$")
+        set(bytes ${CMAKE_MATCH_1})
+        set(kind ${CMAKE_MATCH_2})
+        if(kind STREQUAL "dynamic")
+          set("dynamic_${title}" TRUE)
+        endif()
+        if(NOT DEFINED "frame_${title}" OR bytes GREATER "${frame_${title}}")
+          set("frame_${title}" ${bytes})
+        endif()
+        string(REGEX REPLACE "\\\\n.*" "" "signature_${title}" "${label}")
+      endif()
+    elseif(line MATCHES "^edge: { sourcename: \"([^\"]+)\" targetname: \"([^\"]+)\"( label: \"([^\"]*)\")?")
+      set(source "${CMAKE_MATCH_1}")
+      set(target "${CMAKE_MATCH_2}")
+      if(target STREQUAL "__indirect_call")
+        if(CMAKE_MATCH_4)
+          list(APPEND "indirect_at_${source}" "${CMAKE_MATCH_4}")
+        else()
+          list(APPEND "indirect_at_${source}" "?")
+        endif()
+      else()
+        list(APPEND "calls_${source}" "${target}")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+foreach(title IN LISTS titles)
+  if(DEFINED "calls_${title}")
+    list(REMOVE_DUPLICATES "calls_${title}")
+  endif()
+endforeach()
+
+# Demangled names without parameters ("palp::fw::Controller::tick"), for INDIRECT and messages.
+string(REGEX REPLACE "(^|;)[^;]*:" "\\1" symbols "${titles}")  # drop "<file>:" of local titles
+string(REPLACE ";" "\n" symbol_text "${symbols}")
+set(symbol_file "${CMAKE_CURRENT_BINARY_DIR}/check_isr_stack.symbols")
+file(WRITE "${symbol_file}" "${symbol_text}\n")
+execute_process(COMMAND "${CXXFILT}" INPUT_FILE "${symbol_file}" OUTPUT_VARIABLE demangled
+                RESULT_VARIABLE rc)
+file(REMOVE "${symbol_file}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${CXXFILT} failed (${rc})")
+endif()
+string(REGEX REPLACE "\n$" "" demangled "${demangled}")
+string(REPLACE "\n" ";" demangled "${demangled}")
+list(LENGTH titles n_titles)
+list(LENGTH demangled n_demangled)
+if(NOT n_titles EQUAL n_demangled)
+  message(FATAL_ERROR "check_isr_stack: ${CXXFILT} returned ${n_demangled} names for ${n_titles}")
+endif()
+math(EXPR last "${n_titles} - 1")
+foreach(k RANGE ${last})
+  list(GET titles ${k} title)
+  list(GET demangled ${k} name)
+  set("display_${title}" "${name}")
+  string(REGEX REPLACE "\\(.*$" "" base "${name}")  # parameters and " [clone .isra.0]" go
+  list(APPEND "titles_named_${base}" "${title}")
+endforeach()
+
+# ---- INDIRECT: the allowed targets of each caller's indirect calls --------------------------------
+set(allowed_callers "")
+if(DEFINED INDIRECT AND NOT INDIRECT STREQUAL "")
+  string(REPLACE "|" ";" entries "${INDIRECT}")
+  foreach(entry IN LISTS entries)
+    if(NOT entry MATCHES "^(.+)->(.+)$")
+      message(FATAL_ERROR "check_isr_stack: INDIRECT entry '${entry}' is not <caller>-><target>")
+    endif()
+    set(caller "${CMAKE_MATCH_1}")
+    set(target "${CMAKE_MATCH_2}")
+    foreach(name IN ITEMS "${caller}" "${target}")
+      if(NOT DEFINED "titles_named_${name}")
+        message(FATAL_ERROR "check_isr_stack: INDIRECT entry '${entry}': no function '${name}' in "
+                            "the call graph (renamed, or the list is stale)")
+      endif()
+    endforeach()
+    foreach(caller_title IN LISTS "titles_named_${caller}")
+      list(APPEND "allowed_from_${caller_title}" ${titles_named_${target}})
+    endforeach()
+  endforeach()
+endif()
+
+# ---- functions without a .ci node: library code, read from the image -------------------------
+# library_node(<symbol>): for a function GCC did not compile here (libgcc, libc, libm), sets the
+# global properties frame_<symbol> and calls_<symbol> from its machine code in IMAGE. The frame
+# is the sum of every push, vpush, `sub sp, #n` and `str rx, [sp, #-n]!` in the function (an
+# upper bound: each path runs a subset); its calls are its bl/blx and its branches to other
+# symbols (tail calls). An indirect branch or an SP set from a register cannot be bounded. A
+# symbol not in the image is never called (GCC recorded a call it later optimised away): 0 B.
+function(library_node symbol path)
+  if(NOT DEFINED IMAGE OR IMAGE STREQUAL "")
+    cannot_bound("${path}" "${symbol} has no frame in the .ci files and no -DIMAGE to read its "
+                           "machine code from")
+  endif()
+  execute_process(COMMAND "${OBJDUMP}" -d --no-show-raw-insn "--disassemble=${symbol}" "${IMAGE}"
+                  OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${OBJDUMP} --disassemble=${symbol} ${IMAGE} failed (${rc})")
+  endif()
+  set(frame 0)
+  set(calls "")
+  set(note "not in the image")
+  string(REPLACE ";" "," listing "${listing}")
+  string(REPLACE "\n" ";" lines "${listing}")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^[0-9a-f]+ <${symbol}>:$")
+      set(note "machine code")
+    endif()
+    if(NOT line MATCHES "^ +[0-9a-f]+:\t([a-z0-9.]+)\t?(.*)$")
+      continue()
+    endif()
+    set(op "${CMAKE_MATCH_1}")
+    set(args "${CMAKE_MATCH_2}")
+    string(REGEX REPLACE "[ \t]*@.*$" "" args "${args}")  # objdump's comments
+    if(op MATCHES "^(push|stmdb|vpush|vstmdb)(\\.w)?$" AND
+       (op MATCHES "push" OR args MATCHES "^sp!"))
+      string(REGEX REPLACE "^.*{(.*)}$" "\\1" registers "${args}")
+      string(REPLACE "," ";" registers "${registers}")
+      foreach(r IN LISTS registers)
+        string(STRIP "${r}" r)
+        set(size 4)
+        if(r MATCHES "^d")
+          set(size 8)
+        endif()
+        if(r MATCHES "^[a-z]+([0-9]+)-[a-z]+([0-9]+)$")
+          math(EXPR frame "${frame} + (${CMAKE_MATCH_2} - ${CMAKE_MATCH_1} + 1) * ${size}")
+        else()
+          math(EXPR frame "${frame} + ${size}")
+        endif()
+      endforeach()
+    elseif(op MATCHES "^subw?(\\.w)?$" AND args MATCHES "^sp, (sp, )?#([0-9]+)$")
+      math(EXPR frame "${frame} + ${CMAKE_MATCH_2}")
+    elseif(op MATCHES "^str" AND args MATCHES "\\[sp, #-([0-9]+)\\]!$")
+      math(EXPR frame "${frame} + ${CMAKE_MATCH_1}")
+    elseif(args MATCHES "^sp," AND NOT op MATCHES "^(add|addw|add\\.w|ldr|ldrd|ldm|ldmia)")
+      cannot_bound("${path}" "${symbol} sets SP from a register (${op} ${args})")
+    elseif(op MATCHES "^b" AND args MATCHES "^[0-9a-f]+ <([^+>]+)")
+      if(NOT CMAKE_MATCH_1 STREQUAL symbol)
+        list(APPEND calls "${CMAKE_MATCH_1}")
+      endif()
+    elseif((op MATCHES "^(blx|bx|mov)" AND args MATCHES "^(pc, )?r[0-9]+$|^ip$|^(pc, )?ip$") OR
+           (op MATCHES "^ldr" AND args MATCHES "^pc, "))
+      cannot_bound("${path}" "${symbol} makes an indirect call (${op} ${args})")
+    endif()
+  endforeach()
+  if(calls)
+    list(REMOVE_DUPLICATES calls)
+  endif()
+  set_property(GLOBAL PROPERTY "frame_${symbol}" ${frame})
+  set_property(GLOBAL PROPERTY "calls_${symbol}" "${calls}")
+  set_property(GLOBAL PROPERTY "display_${symbol}" "${symbol} [${note}]")
+endfunction()
+
+# ---- the walk ------------------------------------------------------------------------------------
+# A function's frame, calls and name: from the .ci files, else from library_node.
+function(node title path)
+  get_property(known GLOBAL PROPERTY "frame_${title}" SET)
+  if(NOT known)
+    if(DEFINED "frame_${title}")
+      set_property(GLOBAL PROPERTY "frame_${title}" ${frame_${title}})
+      set_property(GLOBAL PROPERTY "calls_${title}" "${calls_${title}}")
+      set_property(GLOBAL PROPERTY "display_${title}" "${display_${title}}")
+    else()
+      library_node("${title}" "${path}")
+    endif()
+  endif()
+endfunction()
+
+function(describe_path out path)
+  set(text "")
+  foreach(title IN LISTS path)
+    get_property(frame GLOBAL PROPERTY "frame_${title}")
+    get_property(name GLOBAL PROPERTY "display_${title}")
+    if(name STREQUAL "")
+      set(name "${display_${title}}")
+    endif()
+    if(frame STREQUAL "")
+      set(frame "?")
+    endif()
+    string(APPEND text "\n    ${name} (${frame} B)")
+  endforeach()
+  set(${out} "${text}" PARENT_SCOPE)
+endfunction()
+
+function(cannot_bound path)
+  list(JOIN ARGN "" why)
+  describe_path(text "${path}")
+  message(FATAL_ERROR "check_isr_stack: cannot bound the stack of ${ROOT}: ${why}\n"
+                      "  call path from ${ROOT} (frames):${text}")
+endfunction()
+
+# worst(<title> <path>): sets the global properties bound_<title> (bytes, its frame included) and
+# deepest_<title> (the deepest path from it), or fails.
+function(worst title path)
+  get_property(done GLOBAL PROPERTY "bound_${title}" SET)
+  if(done)
+    return()
+  endif()
+  list(APPEND path "${title}")
+  if(DEFINED "dynamic_${title}")
+    cannot_bound("${path}" "${display_${title}} has a dynamic frame (alloca or a variable-length array)")
+  endif()
+  node("${title}" "${path}")
+  get_property(frame GLOBAL PROPERTY "frame_${title}")
+  get_property(callees GLOBAL PROPERTY "calls_${title}")
+  set_property(GLOBAL PROPERTY "on_path_${title}" TRUE)
+  if(DEFINED "indirect_at_${title}")
+    if(NOT DEFINED "allowed_from_${title}")
+      list(JOIN "indirect_at_${title}" ", " where)
+      cannot_bound("${path}" "${display_${title}} makes an indirect call (at ${where}) that "
+                             "INDIRECT does not resolve: list its targets as <caller>-><target>")
+    endif()
+    list(APPEND callees ${allowed_from_${title}})
+    list(REMOVE_DUPLICATES callees)
+  endif()
+  set(deepest_bytes 0)
+  set(deepest_path "")
+  foreach(callee IN LISTS callees)
+    get_property(cycle GLOBAL PROPERTY "on_path_${callee}")
+    if(cycle)
+      list(APPEND path "${callee}")
+      cannot_bound("${path}" "recursion: ${display_${callee}} is reached again on this path")
+    endif()
+    worst("${callee}" "${path}")
+    get_property(bytes GLOBAL PROPERTY "bound_${callee}")
+    if(bytes GREATER deepest_bytes OR deepest_path STREQUAL "")
+      set(deepest_bytes ${bytes})
+      get_property(deepest_path GLOBAL PROPERTY "deepest_${callee}")
+    endif()
+  endforeach()
+  set_property(GLOBAL PROPERTY "on_path_${title}" FALSE)
+  math(EXPR bound "${frame} + ${deepest_bytes}")
+  set_property(GLOBAL PROPERTY "bound_${title}" ${bound})
+  set_property(GLOBAL PROPERTY "deepest_${title}" "${title};${deepest_path}")
+endfunction()
+
+if(NOT DEFINED "seen_${ROOT}")
+  message(FATAL_ERROR "check_isr_stack: the root ${ROOT} is in none of the .ci files below "
+                      "${CI_DIRS}")
+endif()
+worst("${ROOT}" "")
+get_property(bound GLOBAL PROPERTY "bound_${ROOT}")
+get_property(deepest GLOBAL PROPERTY "deepest_${ROOT}")
+list(REMOVE_ITEM deepest "")
+describe_path(path_text "${deepest}")
+math(EXPR total "${bound} + ${exception_entry_frame}")
+string(CONCAT report "stack of ${ROOT}: ${total} B (limit ${LIMIT} B) = ${bound} B of frames on the "
+           "deepest path + ${exception_entry_frame} B exception entry (extended FPU frame, "
+           "aligned); deepest path:${path_text}")
+if(total GREATER LIMIT)
+  message(FATAL_ERROR "check_isr_stack: ${ROOT} is over its limit: ${report}")
+endif()
+message(STATUS "${report}")
