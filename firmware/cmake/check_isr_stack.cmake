@@ -3,29 +3,22 @@
 #
 #   cmake -DCI_DIRS=<dir>[,<dir>...] -DROOT=<symbol> -DLIMIT=<bytes> [-DIMAGE=<a.elf>]
 #         [-DINDIRECT=<caller>-><target>[|<caller>-><target>...]] [-DCXXFILT=<c++filt>]
-#         [-DOBJDUMP=<arm-none-eabi-objdump>] -P check_isr_stack.cmake
+#         [-DOBJDUMP=<arm-none-eabi-objdump>] [-DNM=<arm-none-eabi-nm>] -P check_isr_stack.cmake
 #
-# Input: the .ci files below CI_DIRS (the object directories of the image's targets), written by
-# `-fcallgraph-info=su` (GCC >= 10, VCG format): one node per function compiled, labelled with its
-# frame ("24 bytes (static)"), one edge per call left after optimisation (inlined calls are
-# gone; tail calls stay as edges, which over-counts), `__indirect_call` for a call through a
-# pointer, and nodes without a frame for functions compiled elsewhere. Titles are the symbols;
-# a function with internal linkage is "<file>:<symbol>". A symbol compiled in several objects
-# (inline functions, weak defaults) takes the largest frame and all the calls.
+# The graph: the .ci files below CI_DIRS (the object directories of the image's targets), written
+# by `-fcallgraph-info=su` and read by callgraph.cmake (which says what they hold, and the
+# INDIRECT format); tail calls stay as edges, which over-counts.
 #
-# The walk starts at ROOT (the vector entry's symbol, e.g. palp_irq_timer0) and takes, for each
-# function, its frame plus the deepest of its callees. It fails, naming the function and the call
-# path to it, when it meets
-#   - a function without a frame: compiled without -fcallgraph-info (libc, libgcc, libm) or not
-#     compiled at all (the call would not link);
+# The walk starts at ROOT (the vector entry: its symbol or demangled name, e.g. palp_irq_timer0) and takes, for each
+# function, its frame plus the deepest of its callees. A function without a frame in the .ci
+# files (libgcc, libc, libm) is read from IMAGE's machine code (library_node below). It fails,
+# naming the function and the call path to it, when it meets
+#   - a function without a frame and no IMAGE, or library code with an indirect branch or SP set
+#     from a register;
 #   - a frame GCC calls "dynamic" (alloca, variable-length arrays); "dynamic,bounded" counts as
 #     its stated upper bound;
 #   - recursion (a function reached again while it is on the path);
-#   - an indirect call not resolved by INDIRECT. Each INDIRECT entry "<caller>-><target>" allows
-#     the indirect calls made in <caller> (the function holding the call after inlining) to reach
-#     <target>; both are demangled names without parameters, e.g.
-#     `palp::qemu::QemuBoard::on_tick_irq->palp::app::App<palp::qemu::QemuBoard>::tick_entry`.
-#     An entry naming no function in the graph is an error too (a stale list).
+#   - an indirect call not resolved by INDIRECT.
 # To the deepest path it adds the exception entry frame: on a Cortex-M4F the processor pushes
 # the extended frame when the interrupted code had the FPU context active (CONTROL.FPCA = 1):
 # R0-R3, R12, LR, PC, xPSR, S0-S15, FPSCR and a reserved word, 26 words = 104 B, plus 4 B when
@@ -45,14 +38,6 @@ endforeach()
 if(NOT LIMIT MATCHES "^[0-9]+$")
   message(FATAL_ERROR "check_isr_stack: -DLIMIT=<bytes> must be a number (got '${LIMIT}')")
 endif()
-if(NOT DEFINED CXXFILT OR CXXFILT STREQUAL "")
-  find_program(CXXFILT NAMES arm-none-eabi-c++filt c++filt)
-endif()
-if(NOT CXXFILT)
-  message(FATAL_ERROR "arm-none-eabi-c++filt not found: run scripts/install-deps "
-                      "(package gcc-arm-none-eabi, which brings binutils-arm-none-eabi)")
-endif()
-
 if(DEFINED IMAGE AND NOT IMAGE STREQUAL "")
   if(NOT EXISTS "${IMAGE}")
     message(FATAL_ERROR "check_isr_stack: image ${IMAGE} does not exist")
@@ -66,112 +51,7 @@ if(DEFINED IMAGE AND NOT IMAGE STREQUAL "")
   endif()
 endif()
 
-# ---- read the graph ------------------------------------------------------------------------------
-string(REPLACE "," ";" CI_DIRS "${CI_DIRS}")
-set(ci_files "")
-foreach(dir IN LISTS CI_DIRS)
-  if(NOT IS_DIRECTORY "${dir}")
-    message(FATAL_ERROR "check_isr_stack: object directory ${dir} does not exist")
-  endif()
-  file(GLOB_RECURSE found "${dir}/*.ci")
-  list(APPEND ci_files ${found})
-endforeach()
-if(ci_files STREQUAL "")
-  message(FATAL_ERROR "check_isr_stack: no .ci file below ${CI_DIRS} (compiled without "
-                      "-fcallgraph-info=su?)")
-endif()
-
-set(titles "")  # every function seen, defined or not
-foreach(ci IN LISTS ci_files)
-  file(STRINGS "${ci}" lines REGEX "^(node|edge): ")
-  foreach(line IN LISTS lines)
-    if(line MATCHES "^node: { title: \"([^\"]+)\" label: \"([^\"]*)\"")
-      set(title "${CMAKE_MATCH_1}")
-      set(label "${CMAKE_MATCH_2}")
-      if(NOT DEFINED "seen_${title}")
-        set("seen_${title}" TRUE)
-        list(APPEND titles "${title}")
-      endif()
-      if(label MATCHES "\\\\n([0-9]+) bytes \\(([a-z,]+)\\)$")
-        set(bytes ${CMAKE_MATCH_1})
-        set(kind ${CMAKE_MATCH_2})
-        if(kind STREQUAL "dynamic")
-          set("dynamic_${title}" TRUE)
-        endif()
-        if(NOT DEFINED "frame_${title}" OR bytes GREATER "${frame_${title}}")
-          set("frame_${title}" ${bytes})
-        endif()
-        string(REGEX REPLACE "\\\\n.*" "" "signature_${title}" "${label}")
-      endif()
-    elseif(line MATCHES "^edge: { sourcename: \"([^\"]+)\" targetname: \"([^\"]+)\"( label: \"([^\"]*)\")?")
-      set(source "${CMAKE_MATCH_1}")
-      set(target "${CMAKE_MATCH_2}")
-      if(target STREQUAL "__indirect_call")
-        if(CMAKE_MATCH_4)
-          list(APPEND "indirect_at_${source}" "${CMAKE_MATCH_4}")
-        else()
-          list(APPEND "indirect_at_${source}" "?")
-        endif()
-      else()
-        list(APPEND "calls_${source}" "${target}")
-      endif()
-    endif()
-  endforeach()
-endforeach()
-foreach(title IN LISTS titles)
-  if(DEFINED "calls_${title}")
-    list(REMOVE_DUPLICATES "calls_${title}")
-  endif()
-endforeach()
-
-# Demangled names without parameters ("palp::fw::Controller::tick"), for INDIRECT and messages.
-string(REGEX REPLACE "(^|;)[^;]*:" "\\1" symbols "${titles}")  # drop "<file>:" of local titles
-string(REPLACE ";" "\n" symbol_text "${symbols}")
-set(symbol_file "${CMAKE_CURRENT_BINARY_DIR}/check_isr_stack.symbols")
-file(WRITE "${symbol_file}" "${symbol_text}\n")
-execute_process(COMMAND "${CXXFILT}" INPUT_FILE "${symbol_file}" OUTPUT_VARIABLE demangled
-                RESULT_VARIABLE rc)
-file(REMOVE "${symbol_file}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "${CXXFILT} failed (${rc})")
-endif()
-string(REGEX REPLACE "\n$" "" demangled "${demangled}")
-string(REPLACE "\n" ";" demangled "${demangled}")
-list(LENGTH titles n_titles)
-list(LENGTH demangled n_demangled)
-if(NOT n_titles EQUAL n_demangled)
-  message(FATAL_ERROR "check_isr_stack: ${CXXFILT} returned ${n_demangled} names for ${n_titles}")
-endif()
-math(EXPR last "${n_titles} - 1")
-foreach(k RANGE ${last})
-  list(GET titles ${k} title)
-  list(GET demangled ${k} name)
-  set("display_${title}" "${name}")
-  string(REGEX REPLACE "\\(.*$" "" base "${name}")  # parameters and " [clone .isra.0]" go
-  list(APPEND "titles_named_${base}" "${title}")
-endforeach()
-
-# ---- INDIRECT: the allowed targets of each caller's indirect calls --------------------------------
-set(allowed_callers "")
-if(DEFINED INDIRECT AND NOT INDIRECT STREQUAL "")
-  string(REPLACE "|" ";" entries "${INDIRECT}")
-  foreach(entry IN LISTS entries)
-    if(NOT entry MATCHES "^(.+)->(.+)$")
-      message(FATAL_ERROR "check_isr_stack: INDIRECT entry '${entry}' is not <caller>-><target>")
-    endif()
-    set(caller "${CMAKE_MATCH_1}")
-    set(target "${CMAKE_MATCH_2}")
-    foreach(name IN ITEMS "${caller}" "${target}")
-      if(NOT DEFINED "titles_named_${name}")
-        message(FATAL_ERROR "check_isr_stack: INDIRECT entry '${entry}': no function '${name}' in "
-                            "the call graph (renamed, or the list is stale)")
-      endif()
-    endforeach()
-    foreach(caller_title IN LISTS "titles_named_${caller}")
-      list(APPEND "allowed_from_${caller_title}" ${titles_named_${target}})
-    endforeach()
-  endforeach()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/callgraph.cmake)
 
 # ---- functions without a .ci node: library code, read from the image -------------------------
 # library_node(<symbol>): for a function GCC did not compile here (libgcc, libc, libm), sets the
@@ -327,13 +207,35 @@ function(worst title path)
   set_property(GLOBAL PROPERTY "deepest_${title}" "${title};${deepest_path}")
 endfunction()
 
-if(NOT DEFINED "seen_${ROOT}")
-  message(FATAL_ERROR "check_isr_stack: the root ${ROOT} is in none of the .ci files below "
-                      "${CI_DIRS}")
+resolve_function(root "${ROOT}")
+# The root must be what runs: in the image, and the function the image's symbol ROOT (the vector
+# table's name) is, not a weak default beside a C++-mangled handler of the same plain name.
+if(DEFINED IMAGE AND NOT IMAGE STREQUAL "")
+  if(NOT DEFINED NM OR NM STREQUAL "")
+    find_program(NM arm-none-eabi-nm)
+  endif()
+  execute_process(COMMAND "${NM}" "${IMAGE}" OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${NM} ${IMAGE} failed (${rc})")
+  endif()
+  set(root_symbol "${symbol_${root}}")
+  if(NOT symbols MATCHES "(^|\n)([0-9a-f]+) [TtWw] ${root_symbol}\n")
+    message(FATAL_ERROR "check_isr_stack: ${display_${root}} (${root_symbol}) is not in ${IMAGE}: "
+                        "nothing references it (a handler the vector table names must be "
+                        "extern \"C\")")
+  endif()
+  set(root_address ${CMAKE_MATCH_2})
+  if(symbols MATCHES "(^|\n)([0-9a-f]+) [TtWw] ${ROOT}\n" AND
+     NOT CMAKE_MATCH_2 STREQUAL root_address)
+    message(FATAL_ERROR "check_isr_stack: the image's ${ROOT} is at 0x${CMAKE_MATCH_2}, not "
+                        "${display_${root}} (${root_symbol}, 0x${root_address}): the vector "
+                        "runs another function, e.g. the weak default (declare the handler "
+                        "extern \"C\")")
+  endif()
 endif()
-worst("${ROOT}" "")
-get_property(bound GLOBAL PROPERTY "bound_${ROOT}")
-get_property(deepest GLOBAL PROPERTY "deepest_${ROOT}")
+worst("${root}" "")
+get_property(bound GLOBAL PROPERTY "bound_${root}")
+get_property(deepest GLOBAL PROPERTY "deepest_${root}")
 list(REMOVE_ITEM deepest "")
 describe_path(path_text "${deepest}")
 math(EXPR total "${bound} + ${exception_entry_frame}")
