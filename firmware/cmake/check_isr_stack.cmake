@@ -4,6 +4,11 @@
 #   cmake -DCI_DIRS=<dir>[,<dir>...] -DROOT=<symbol> -DLIMIT=<bytes> [-DIMAGE=<a.elf>]
 #         [-DINDIRECT=<caller>-><target>[|<caller>-><target>...]] [-DCXXFILT=<c++filt>]
 #         [-DOBJDUMP=<arm-none-eabi-objdump>] [-DNM=<arm-none-eabi-nm>] -P check_isr_stack.cmake
+#   cmake -DSETTINGS=<image>.isr_stack.cmake [-D<setting>=...] [-DHINT=<text>]
+#         -P check_isr_stack.cmake
+# SETTINGS: the file firmware/CMakeLists.txt (palp_isr_stack_check) writes for an image, which
+# sets each of the above unless given on the command line (e.g. -DLIMIT=500 to see it fail);
+# the build runs it after the link and ctest again. HINT: how to build what is missing.
 #
 # The graph: the .ci files below CI_DIRS (the object directories of the image's targets), written
 # by `-fcallgraph-info=su` and read by callgraph.cmake (which says what they hold, and the
@@ -30,6 +35,16 @@ cmake_minimum_required(VERSION 3.25)
 
 set(exception_entry_frame 108)
 
+if(NOT DEFINED HINT)
+  set(HINT "")
+endif()
+if(DEFINED SETTINGS)
+  if(NOT EXISTS "${SETTINGS}")
+    message(FATAL_ERROR "check_isr_stack: ${SETTINGS} does not exist: ${HINT}")
+  endif()
+  include("${SETTINGS}")
+endif()
+
 foreach(arg CI_DIRS ROOT LIMIT)
   if(NOT DEFINED ${arg} OR "${${arg}}" STREQUAL "")
     message(FATAL_ERROR "check_isr_stack: -D${arg}=... is required")
@@ -40,7 +55,7 @@ if(NOT LIMIT MATCHES "^[0-9]+$")
 endif()
 if(DEFINED IMAGE AND NOT IMAGE STREQUAL "")
   if(NOT EXISTS "${IMAGE}")
-    message(FATAL_ERROR "check_isr_stack: image ${IMAGE} does not exist")
+    message(FATAL_ERROR "check_isr_stack: image ${IMAGE} does not exist: ${HINT}")
   endif()
   if(NOT DEFINED OBJDUMP OR OBJDUMP STREQUAL "")
     find_program(OBJDUMP arm-none-eabi-objdump)
