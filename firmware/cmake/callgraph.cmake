@@ -88,12 +88,7 @@ endforeach()
 
 # Demangled names without parameters ("palp::fw::Controller::tick"), for INDIRECT and messages.
 string(REGEX REPLACE "(^|;)[^;]*:" "\\1" symbols "${titles}")  # drop "<file>:" of local titles
-string(REPLACE ";" "\n" symbol_text "${symbols}")
-set(symbol_file "${CMAKE_CURRENT_BINARY_DIR}/check_isr_stack.symbols")
-file(WRITE "${symbol_file}" "${symbol_text}\n")
-execute_process(COMMAND "${CXXFILT}" INPUT_FILE "${symbol_file}" OUTPUT_VARIABLE demangled
-                RESULT_VARIABLE rc)
-file(REMOVE "${symbol_file}")
+execute_process(COMMAND "${CXXFILT}" ${symbols} OUTPUT_VARIABLE demangled RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${CXXFILT} failed (${rc})")
 endif()
