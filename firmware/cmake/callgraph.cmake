@@ -65,7 +65,8 @@ foreach(ci IN LISTS ci_files)
         endif()
         string(REGEX REPLACE "\\\\n.*" "" "signature_${title}" "${label}")
       endif()
-    elseif(line MATCHES "^edge: { sourcename: \"([^\"]+)\" targetname: \"([^\"]+)\"( label: \"([^\"]*)\")?")
+    elseif(line MATCHES
+           "^edge: { sourcename: \"([^\"]+)\" targetname: \"([^\"]+)\"( label: \"([^\"]*)\")?")
       set(source "${CMAKE_MATCH_1}")
       set(target "${CMAKE_MATCH_2}")
       if(target STREQUAL "__indirect_call")
@@ -109,7 +110,7 @@ foreach(k RANGE ${last})
   list(APPEND "titles_named_${base}" "${title}")
 endforeach()
 
-# ---- INDIRECT: the allowed targets of each caller's indirect calls --------------------------------
+# ---- INDIRECT: the allowed targets of each caller's indirect calls ---------------------------
 set(allowed_callers "")
 if(DEFINED INDIRECT AND NOT INDIRECT STREQUAL "")
   string(REPLACE "|" ";" entries "${INDIRECT}")

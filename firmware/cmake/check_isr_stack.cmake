@@ -14,10 +14,12 @@
 # by `-fcallgraph-info=su` and read by callgraph.cmake (which says what they hold, and the
 # INDIRECT format); tail calls stay as edges, which over-counts.
 #
-# The walk starts at ROOT (the vector entry: its symbol or demangled name, e.g. palp_irq_timer0) and takes, for each
-# function, its frame plus the deepest of its callees. A function without a frame in the .ci
-# files (libgcc, libc, libm) is read from IMAGE's machine code (library_node below). It fails,
-# naming the function and the call path to it, when it meets
+# The walk starts at ROOT (the vector entry: its symbol or demangled name, e.g. palp_irq_timer0)
+# and takes, for each function, its frame plus the deepest of its callees. A function without a
+# frame in the .ci files (libgcc, libc, libm, assembly) is read from IMAGE's machine code
+# (library_node below). With IMAGE, ROOT must be in the image and be the function the image's
+# symbol ROOT is (what the vector table runs). It fails, naming the function and the call path
+# to it, when it meets
 #   - a function without a frame and no IMAGE, or library code with an indirect branch or SP set
 #     from a register;
 #   - a frame GCC calls "dynamic" (alloca, variable-length arrays); "dynamic,bounded" counts as
@@ -29,8 +31,8 @@
 # R0-R3, R12, LR, PC, xPSR, S0-S15, FPSCR and a reserved word, 26 words = 104 B, plus 4 B when
 # it realigns SP to 8 bytes (CCR.STKALIGN) — ARMv7-M Architecture Reference Manual (DDI 0403E),
 # B1.5.7 "Stack alignment on exception entry" and B1.5.6 "Exception entry behavior": 108 B.
-# Not seen: interrupts that preempt ROOT (each adds its own bound), and what the frames of
-# hand-written assembly would be (none is on these paths; it would show as a missing frame).
+# Not seen: interrupts that preempt ROOT (each adds its own bound), the stack of the code ROOT
+# interrupts, and linker veneers (branches that do not touch SP).
 cmake_minimum_required(VERSION 3.25)
 
 set(exception_entry_frame 108)
@@ -127,7 +129,7 @@ function(library_node symbol path)
         list(APPEND calls "${CMAKE_MATCH_1}")
       endif()
     elseif((op MATCHES "^(blx|bx|mov)" AND args MATCHES "^(pc, )?r[0-9]+$|^ip$|^(pc, )?ip$") OR
-           (op MATCHES "^ldr" AND args MATCHES "^pc, "))
+           (op MATCHES "^ldr" AND args MATCHES "^pc, " AND NOT args MATCHES "^pc, \\[sp\\], #"))
       cannot_bound("${path}" "${symbol} makes an indirect call (${op} ${args})")
     endif()
   endforeach()
@@ -188,7 +190,8 @@ function(worst title path)
   endif()
   list(APPEND path "${title}")
   if(DEFINED "dynamic_${title}")
-    cannot_bound("${path}" "${display_${title}} has a dynamic frame (alloca or a variable-length array)")
+    cannot_bound("${path}" "${display_${title}} has a dynamic frame (alloca or a "
+                           "variable-length array)")
   endif()
   node("${title}" "${path}")
   get_property(frame GLOBAL PROPERTY "frame_${title}")
@@ -256,9 +259,9 @@ get_property(deepest GLOBAL PROPERTY "deepest_${root}")
 list(REMOVE_ITEM deepest "")
 describe_path(path_text "${deepest}")
 math(EXPR total "${bound} + ${exception_entry_frame}")
-string(CONCAT report "stack of ${ROOT}: ${total} B (limit ${LIMIT} B) = ${bound} B of frames on the "
-           "deepest path + ${exception_entry_frame} B exception entry (extended FPU frame, "
-           "aligned); deepest path:${path_text}")
+string(CONCAT report "stack of ${ROOT}: ${total} B (limit ${LIMIT} B) = ${bound} B of frames on "
+       "the deepest path + ${exception_entry_frame} B exception entry (extended FPU frame, "
+       "aligned); deepest path:${path_text}")
 if(total GREATER LIMIT)
   message(FATAL_ERROR "check_isr_stack: ${ROOT} is over its limit: ${report}")
 endif()
