@@ -1,26 +1,50 @@
 // The STM32G474 board class (firmware/board/stm32g474/stm_board.hpp) on a host register file, for
 // tests/stm32/test_board*.cpp: the hardware's part the board's init polls (ADC calibration ends,
-// ADEN raises ADRDY, ISR bits are write-1-to-clear), a Cpu that records PRIMASK/WFI/barriers, and
-// a fixture that builds and inits a board with a recording tick handler.
+// ADEN raises ADRDY, ISR bits are write-1-to-clear), the USB peripheral's registers and PMA
+// answered by the FSDEV model (fsdev_model.hpp) and the flash controller's registers and
+// calibration pages by the flash model (flash_model.hpp), a Cpu that records PRIMASK/WFI/
+// barriers, and a fixture that builds and inits a board with a recording tick handler.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
+#include "flash_model.hpp"
+#include "fsdev_model.hpp"
 #include "register_file.hpp"
 #include "stm_board.hpp"
 
 namespace palp::stm32::board_test {
 
-/// The register file plus what the board's init needs from the ADCs to succeed.
+/// The register file plus what the board's init needs from the ADCs to succeed; LPUART1's RDR
+/// and RXNE from a queue of received bytes; the USB and flash address ranges go to their models. RCC_APB1ENR1 lives in the register file and each
+/// write of it is copied to the FSDEV model, whose USB registers answer only with USBEN set.
 class BoardHardware {
  public:
-  std::uint32_t read(std::uint32_t address) { return rf.read(address); }
+  std::uint32_t read(std::uint32_t address) {
+    if (is_flash(address)) return flash_model.read(address);
+    if (is_usb(address)) return usb_model.read(address);
+    if (address == lpuart1::Isr::reg.address() && !uart_rx.empty()) {
+      return rf.read(address) | lpuart1::Isr::RXNE.mask();
+    }
+    if (address == lpuart1::Rdr::reg.address() && !uart_rx.empty()) {
+      const std::uint8_t byte = uart_rx.front();
+      uart_rx.pop_front();
+      return byte;
+    }
+    return rf.read(address);
+  }
+  std::uint16_t read16(std::uint32_t address) { return usb_model.read16(address); }
+  void write16(std::uint32_t address, std::uint16_t value) { usb_model.write16(address, value); }
   void write(std::uint32_t address, std::uint32_t value) {
+    if (is_flash(address)) return flash_model.write(address, value);
+    if (is_usb(address)) return usb_model.write(address, value);
+    if (address == rcc::Apb1enr1::reg.address()) usb_model.write(address, value);
     for (const auto& [cr, isr] : {std::pair{adc::Cr::adc1, adc::Isr::adc1},
                                   std::pair{adc::Cr::adc2, adc::Isr::adc2}}) {
       if (address == isr.address()) {  // write 1 to clear; logged
@@ -61,6 +85,19 @@ class BoardHardware {
   }
 
   test::RegisterFile rf;
+  test::FsdevModel usb_model;
+  test::FlashModel flash_model;
+  /// Bytes LPUART1 has received and not yet given up through RDR (ISR.RXNE while any wait).
+  std::deque<std::uint8_t> uart_rx;
+
+ private:
+  static bool is_flash(std::uint32_t address) {  // the memory, then FLASH_ACR .. the last register
+    return (address >= 0x0800'0000 && address < 0x0808'0000) ||
+           (address >= flash::Acr::reg.address() && address < flash::Acr::reg.address() + 0x400);
+  }
+  static bool is_usb(std::uint32_t address) {  // the registers (facts §5.2), then the PMA (§5.1)
+    return address >= usb::kBase && address < usb::kPmaBase + usb::kPmaSize;
+  }
 };
 
 /// The core's operations, recorded: "mask"/"restore" (PRIMASK save/restore), "cpsid", "cpsie",

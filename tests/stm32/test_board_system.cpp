@@ -1,6 +1,7 @@
 // The STM32G474 board class (stm_board.hpp) around its tick, on a host register file: the IWDG
 // refresh rule, the bootloader request, the identity from the device UID, the link's transmit
-// wake-up, idle()'s sleep, the status LED and the calibration stand-in.
+// wake-up, idle()'s sleep and the status LED (calibration storage: test_board_calibration.cpp;
+// the USB link: test_board_usb.cpp).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -87,7 +88,7 @@ TEST_F(StmBoardSystem, IdentityNamesTheBoardTheUidSerialTheGitHashAndTheLinkStre
   Board b(fresh, cpu, fresh_link, platform());
   b.init();
   const fw::DeviceIdentity id = b.identity();
-  EXPECT_STREQ(id.board, "nucleo-g474re");
+  EXPECT_STREQ(id.board, "stm32g474");  // proto::board_name(BoardId::stm32g474)
   EXPECT_STREQ(id.serial, "0012ABCD34333231FEDCBA98");
   EXPECT_STREQ(id.git_hash, "abc1234");
   EXPECT_EQ(id.max_stream_rate_Hz, 3840u);  // 921600 baud / 10 / 24 B per sample
@@ -135,23 +136,6 @@ TEST_F(StmBoardSystem, TheStatusLedIsOnWhileTheTickRunsAndBlinksAt2HzWhileNfault
   // 1.00 .. 2.00 s: on at 1.00, off at 1.25, on at 1.50, off at 1.75 (250 ms phases).
   EXPECT_EQ(hw.count_writes(bsrr, off, from), 2u);
   EXPECT_EQ(hw.count_writes(bsrr, on, from), 1u);
-}
-
-TEST_F(StmBoardSystem, CalibrationStandInReadsErasedUntilWrittenThenTheBlockPaddedWithFf) {
-  std::uint8_t block[8] = {};
-  EXPECT_EQ(board.read_calibration(block, sizeof block), sizeof block);
-  for (std::uint8_t b : block) EXPECT_EQ(b, 0xFF);
-  const std::uint8_t longer[5] = {1, 2, 3, 4, 5};
-  EXPECT_TRUE(board.write_calibration(longer, 5));
-  const std::uint8_t stored[3] = {7, 8, 9};
-  EXPECT_TRUE(board.write_calibration(stored, 3));  // a shorter block replaces it whole
-  EXPECT_EQ(board.read_calibration(block, sizeof block), sizeof block);
-  EXPECT_EQ(block[0], 7);
-  EXPECT_EQ(block[2], 9);
-  EXPECT_EQ(block[3], 0xFF);
-  EXPECT_EQ(block[4], 0xFF);
-  static std::uint8_t too_big[fw::kCalibrationMaxBlockSize + 1] = {};
-  EXPECT_FALSE(board.write_calibration(too_big, sizeof too_big));
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ BoardPlatform target_platform() {
 }  // namespace
 
 StmBoard::StmBoard() : StmBoardT(g_io, g_cpu, link_uart::host_link(), target_platform()) {
-  set_tick_irq_board(this);
+  set_irq_board(this);
   init(startup::clock_status() == clock::Status::ok);
 }
 

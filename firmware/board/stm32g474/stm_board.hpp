@@ -1,14 +1,22 @@
 // The STM32G474 probe controller as the app's Board (firmware/app/include/palp/app/board.hpp): the
-// drivers of this directory (clock.hpp at reset, pins.hpp, timers.hpp, adc.hpp, link_uart.hpp)
-// wired to the seam. A template over the register access (regs/register.hpp) and the core's
-// operations (board/cortex_m/cpu.hpp), so tests/stm32 runs it on a host register file:
+// drivers of this directory (clock.hpp at reset, pins.hpp, timers.hpp, adc.hpp, link_uart.hpp,
+// usb_fsdev.hpp with firmware/usb's Device, calibration_flash.hpp) wired to the seam. A template
+// over the register access (regs/register.hpp) and the core's operations
+// (board/cortex_m/cpu.hpp), so tests/stm32 runs it on a host register file and device models:
 // StmBoardT<Mmio, CortexM> is the target's (StmBoard, stm_board.cpp; its interrupt entry is
 // board_irqs.cpp). What each member does, and why (NOTES.md "Board class"):
 //
 //   init         pins (README §3), the LPUART1 host link, the TIM2 encoder, ADC1 injected + ADC2
 //                scan with DMA (armed, waiting for TIM1), the µs clock (TIM5), NVIC priorities
-//                (tick 0x40 above link 0x80), the serial from the device UID. The tick starts
+//                (tick 0x40 above both links' 0x80), the serial from the device UID, the USB
+//                device (FSDEV init, that serial as string 3, D+ pull-up on). The tick starts
 //                with start_tick().
+//   two links    LPUART1 (ST-LINK VCP) and USB (bulk or HID; the USB_LP interrupt, IRQ 20, runs
+//                Device::service()). Both receive into the core; link_read takes the link in
+//                use first and the other only when the first has nothing, and the link that
+//                last delivered bytes is "in use": link_write sends there, and identity()'s
+//                max_stream_rate_Hz is its figure (USB bulk: the core's maximum; HID 2000 Hz;
+//                LPUART1 3840 Hz). Until any link has delivered a byte: LPUART1.
 //   tick         20 or 40 kHz only: TIM1's PWM period is the tick; ADC1's injected sequence
 //                (current, supply) converts on TRGO2 at the counter's top, and its end-of-
 //                sequence interrupt (ADC1_2, IRQ 18) runs on_tick_irq() -> handler.run(ctx).
@@ -26,13 +34,17 @@
 //                tick or a stalled main loop each let it reset the board.
 //   status LED   PA5 (LD2): off until the tick starts; on while it runs; blinking at 2 Hz while
 //                nFAULT is asserted or an init step failed (init_status()).
-//   calibration  a RAM stand-in (RamCalibrationStore) behind contract 3's two calls; the flash
-//                journal (calibration_flash.hpp, flashcal) replaces it when the lead wires it.
+//   calibration  the flash journal in bank 2 (calibration_flash.hpp). write_calibration starts a
+//                commit and returns; idle() advances it one flash step per main-loop pass and
+//                does not sleep until it is done (a page erase takes ~22 ms: waiting for it
+//                would stall the link and the watchdog's main-loop rule). A block written while
+//                a commit runs waits in RAM and is committed next.
 //   bootloader   facts §1.4 pattern 1: a 64-bit request in .bss (>= 0x2000_4000, after the
 //                16 KiB stack), AIRCR.SYSRESETREQ; startup.cpp's reset handler jumps to the ROM.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -41,16 +53,22 @@
 
 #include "adc.hpp"
 #include "bootloader_request.hpp"
+#include "calibration_flash.hpp"
 #include "cpu.hpp"
 #include "link_uart.hpp"
 #include "nvic.hpp"
 #include "palp/app/board.hpp"
 #include "palp/fw/calibration.hpp"
+#include "palp/protocol/board_id.hpp"
+#include "palp/protocol/usb.hpp"
+#include "palp/usb/descriptors.hpp"
+#include "palp/usb/device.hpp"
 #include "pins.hpp"
 #include "regs/gpio.hpp"
 #include "regs/tim.hpp"
 #include "scb.hpp"
 #include "timers.hpp"
+#include "usb_fsdev.hpp"
 #include "vectors_list.hpp"
 
 namespace palp::stm32 {
@@ -88,28 +106,6 @@ constexpr std::uint32_t irq_number(std::string_view name) {
   return 0xFFFF'FFFFu;
 }
 
-/// Contract 3 (/work/team19.md) behind a RAM block: read() copies the stored block (erased = 0xFF),
-/// write() replaces it. Nothing survives a reset: a STAND-IN until the lead wires
-/// CalibrationFlash (calibration_flash.hpp, the flash journal) in with the same two calls.
-class RamCalibrationStore {
- public:
-  RamCalibrationStore() { std::fill(std::begin(bytes_), std::end(bytes_), std::uint8_t{0xFF}); }
-  std::size_t read(std::uint8_t* bytes, std::size_t size) {
-    const std::size_t n = std::min(size, sizeof bytes_);
-    std::copy(bytes_, bytes_ + n, bytes);
-    return n;
-  }
-  bool write(const std::uint8_t* bytes, std::size_t size) {
-    if (size > sizeof bytes_) return false;
-    std::copy(bytes, bytes + size, bytes_);
-    std::fill(bytes_ + size, std::end(bytes_), std::uint8_t{0xFF});
-    return true;
-  }
-
- private:
-  std::uint8_t bytes_[fw::kCalibrationMaxBlockSize];
-};
-
 /// What differs between the target and a host test besides the register access.
 struct BoardPlatform {
   /// The six halfwords ADC2's DMA writes (adc.cpp's buffer on the target) and the address the
@@ -122,14 +118,37 @@ struct BoardPlatform {
   const char* git_hash = "unknown";
 };
 
-template <RegisterAccess Io, class Cpu>
+/// Which host link the app's bytes go to (StmBoardT: the one that last delivered bytes).
+enum class HostLinkId : std::uint8_t { lpuart1, usb };
+
+/// The stream rates the board advertises per link (DeviceInfo.max_stream_rate_Hz, SPEC §9.1), at
+/// the densest sample (all 11 channels, link_uart::kSampleBytes = 24 B):
+/// - LPUART1: link_uart::kStreamRateHz = 3840 Hz (921 600 baud);
+/// - USB bulk: full-speed bulk carries 1 216 000 B/s (palp/protocol/usb.hpp), 50 666 samples/s,
+///   beyond anything the core produces: the core's own maximum (Streamer::kMaxRate_Hz);
+/// - USB HID: one 64-byte report per ms = 64 000 B/s, 2666 samples/s raw; a report is
+///   zero-padded after a frame's end (firmware/usb/README.md), so 2000 Hz (48 000 B/s) leaves a
+///   quarter of the reports for padding and replies.
+namespace stream_rate {
+inline constexpr std::uint32_t kLpuart1Hz = link_uart::kStreamRateHz;
+inline constexpr std::uint32_t kUsbBulkHz =
+    std::min(fw::Streamer::kMaxRate_Hz, proto::usb::kBulkBytesPerS / link_uart::kSampleBytes);
+inline constexpr std::uint32_t kUsbHidHz = 2000;
+static_assert(kUsbHidHz * link_uart::kSampleBytes <= proto::usb::kHidBytesPerS * 3 / 4);
+}  // namespace stream_rate
+
+template <HalfwordAccess Io, class Cpu>
 class StmBoardT {
  public:
-  static constexpr const char* kName = "nucleo-g474re";
-  /// The interrupts (vectors_list.hpp names; facts §2: ADC1_2 = 18).
+  /// The board's name in DeviceInfo: the protocol's one spelling (board_id.hpp).
+  static constexpr const char* kName = proto::board_name(proto::BoardId::stm32g474);
+  /// The interrupts (vectors_list.hpp names; facts §2: ADC1_2 = 18; facts §5.1: USB_LP = 20
+  /// serves every non-isochronous endpoint, bus reset and suspend; USB_HP (19) only iso and
+  /// double-buffered ones, which this device has none of).
   static constexpr std::uint32_t kTickIrq = irq_number("ADC1_2");
   static constexpr std::uint32_t kLinkIrq = irq_number("LPUART");
-  static_assert(kTickIrq == 18 && kLinkIrq == 91);
+  static constexpr std::uint32_t kUsbIrq = irq_number("USB_LP");
+  static_assert(kTickIrq == 18 && kLinkIrq == 91 && kUsbIrq == 20);
   /// The device UID: 96 bits at 0x1FFF_7590 (facts §1.1, CMSIS UID_BASE), three words.
   static constexpr std::uint32_t kUidBase = 0x1FFF'7590u;
   /// The main loop must have passed idle() this recently for the tick to refresh the IWDG:
@@ -143,12 +162,18 @@ class StmBoardT {
   static_assert(kClockPrescaler * 1'000'000u == timers::kTimerClockHz);
 
   using Link = link_uart::Link<Io, link_uart::kRxRingBytes>;
+  using UsbHardware = fsdev::UsbFsdev<Io>;
+  using UsbDevice = ::palp::usb::Device<UsbHardware>;
+  using Calibration = CalibrationFlash<Io>;
+  /// A block write_calibration takes while a commit runs waits here (the core's block size).
+  static constexpr std::size_t kPendingCalibrationBytes = std::tuple_size_v<fw::CalibrationBlock>;
 
   /// Which init step failed first (ok: none). The LED blinks while not ok.
   enum class InitStatus : std::uint8_t { ok, clock_failed, adc_failed, watchdog_failed };
 
   StmBoardT(Io& io, Cpu& cpu, Link& link, const BoardPlatform& platform)
-      : io_(io), cpu_(cpu), link_(link), platform_(platform) {}
+      : io_(io), cpu_(cpu), link_(link), platform_(platform), usb_hw_(io), usb_(usb_hw_),
+        calibration_(io) {}
 
   /// Boot: every peripheral but the tick's (see the file comment). `clock_ok`: the reset
   /// handler's clock init succeeded (startup.hpp).
@@ -161,10 +186,17 @@ class StmBoardT {
       fail(InitStatus::adc_failed);
     }
     start_clock();
+    read_serial();
+    // USB (facts §5.3 item 1; PA11/PA12 analog in pins::kPins, facts §5.1): the serial string
+    // first, so the host never sees another; the pull-up last.
+    usb_hw_.init();
+    (void)::palp::usb::set_serial_number(serial_);  // 24 hex digits: within its 24 characters
     set_priority(kTickIrq, board::nvic::kPriorityTick);
     set_priority(kLinkIrq, board::nvic::kPriorityLink);
+    set_priority(kUsbIrq, board::nvic::kPriorityLink);
     io_.write(board::nvic::bit_word(board::nvic::kIser0, kLinkIrq), board::nvic::bit_of(kLinkIrq));
-    read_serial();
+    io_.write(board::nvic::bit_word(board::nvic::kIser0, kUsbIrq), board::nvic::bit_of(kUsbIrq));
+    usb_.start();
   }
 
   // ---- boot ------------------------------------------------------------------------------------
@@ -173,14 +205,15 @@ class StmBoardT {
     id.board = kName;
     id.serial = serial_;
     id.git_hash = platform_.git_hash;
-    id.max_stream_rate_Hz = link_uart::kStreamRateHz;
+    id.max_stream_rate_Hz = link_stream_rate_Hz();
     return id;
   }
+  /// The stored block (the newest valid journal slot) or 0xFF fill (calibration_flash.hpp). At
+  /// boot nothing runs; otherwise a running commit and the block waiting behind it are finished
+  /// first, so what is read is the newest block written.
   std::size_t read_calibration(std::uint8_t* bytes, std::size_t size) {
+    finish_calibration();
     return calibration_.read(bytes, size);
-  }
-  bool write_calibration(const std::uint8_t* bytes, std::size_t size) {
-    return calibration_.write(bytes, size);
   }
 
   // ---- the control tick ------------------------------------------------------------------------
@@ -265,11 +298,27 @@ class StmBoardT {
   /// wrap), with interrupts masked: the main loop and the tick both extend it.
   std::uint64_t now_us() { return clock_us(); }
 
-  // ---- the link --------------------------------------------------------------------------------
+  // ---- the links -------------------------------------------------------------------------------
+  /// The link in use first; the other only when that one has nothing (so two hosts' bytes do
+  /// not interleave while one is talking). The link that delivers bytes becomes the one in use.
   std::size_t link_read(std::uint8_t* bytes, std::size_t size) {
-    return link_.read_bytes(bytes, size);
+    std::size_t n = read_from(active_, bytes, size);
+    if (n == 0) {
+      const HostLinkId other = active_ == HostLinkId::usb ? HostLinkId::lpuart1 : HostLinkId::usb;
+      n = read_from(other, bytes, size);
+      if (n > 0) active_ = other;
+    }
+    return n;
   }
+  /// To the link in use. LPUART1: a full FIFO arms its TX interrupt (it wakes idle()); USB: the
+  /// USB interrupt is pended so service() starts the IN pipe (its IN-complete interrupt wakes
+  /// idle() when the ring has room again).
   std::size_t link_write(const std::uint8_t* bytes, std::size_t size) {
+    if (active_ == HostLinkId::usb) {
+      const std::size_t n = usb_.write(bytes, size);
+      if (n > 0) pend_usb();
+      return n;
+    }
     const std::size_t n = link_.write_bytes(bytes, size);
     if (n < size) {  // the FIFO is full: its interrupt wakes idle() when it has room
       const board::InterruptLock<Cpu> lock(cpu_);
@@ -278,20 +327,56 @@ class StmBoardT {
     return n;
   }
 
+  /// The USB_LP interrupt (board_irqs.cpp): every pending USB event, the stream moved.
+  void on_usb_irq() { usb_.service(); }
+
+  // ---- calibration storage (main loop) ---------------------------------------------------------
+  /// Starts a journal commit of the block and returns (true: it will be stored unless the flash
+  /// fails: calibration_commit() then says why). While a commit runs the block waits in RAM
+  /// (one: a newer one replaces it) and is committed when the running one ends. False: the
+  /// commit could not start (size 0 or beyond the journal, option bytes not dual-bank), or a
+  /// commit runs and the block is larger than the RAM copy.
+  bool write_calibration(const std::uint8_t* bytes, std::size_t size) {
+    if (commit_state_ == fw::CommitState::erasing || commit_state_ == fw::CommitState::programming) {
+      if (size == 0 || size > kPendingCalibrationBytes) return false;
+      std::copy(bytes, bytes + size, pending_calibration_);
+      pending_calibration_size_ = size;
+      return true;
+    }
+    return begin_commit(bytes, size);
+  }
+  /// The last commit's state (done / failed / running) and its error (calibration_flash.hpp).
+  fw::CommitState calibration_commit() const { return commit_state_; }
+  bool calibration_busy() const {
+    return commit_state_ == fw::CommitState::erasing ||
+           commit_state_ == fw::CommitState::programming || pending_calibration_size_ > 0;
+  }
+  std::uint32_t calibration_failures() const { return calibration_failures_; }
+  Calibration& calibration_store() { return calibration_; }
+
   // ---- power and reset -------------------------------------------------------------------------
+  /// One main-loop pass: counted (the watchdog rule), a running calibration commit advanced by
+  /// one flash step, then WFI unless a link holds received bytes, a commit runs or the app has
+  /// work (the flash raises no interrupt here: the loop keeps polling it, ~30 ms per commit).
   void idle(app::HasWork has_work, void* ctx) {
     main_passes_.store(main_passes_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+    advance_calibration();
     // With interrupts masked, so an interrupt between the check and the WFI still wakes it.
     cpu_.disable_interrupts();
-    if (link_.rx_pending() == 0 && !has_work(ctx)) cpu_.wait_for_interrupt();
+    if (link_.rx_pending() == 0 && usb_.rx_waiting() == 0 && !calibration_busy() &&
+        !has_work(ctx))
+      cpu_.wait_for_interrupt();
     cpu_.enable_interrupts();
   }
 
   /// Facts §1.4 pattern 1: gates off, the request words, then a system reset; the reset handler
   /// (startup.cpp) sees the request first thing and enters the ROM bootloader.
+  /// A calibration commit still running (or waiting) is finished first, bounded by the store's
+  /// poll limit: an update right after a calibration keeps it.
   void enter_bootloader() {
     cpu_.disable_interrupts();
     io_.write(gpio::BsrrC::reg.address(), gpio::BsrrC::BR11.mask());  // DRV8323 ENABLE off
+    finish_calibration();
     io_.write(platform_.bootloader_request_address, bootloader::kRequestWord0);
     io_.write(platform_.bootloader_request_address + 4u, bootloader::kRequestWord1);
     cpu_.barrier();
@@ -304,10 +389,57 @@ class StmBoardT {
   InitStatus init_status() const { return init_status_; }
   bool watchdog_running() const { return watchdog_running_; }
   Link& link() { return link_; }
+  UsbDevice& usb_device() { return usb_; }
+  HostLinkId active_link() const { return active_; }
 
  private:
   void fail(InitStatus s) {
     if (init_status_ == InitStatus::ok) init_status_ = s;
+  }
+
+  std::size_t read_from(HostLinkId link, std::uint8_t* bytes, std::size_t size) {
+    if (link == HostLinkId::lpuart1) return link_.read_bytes(bytes, size);
+    const std::size_t n = usb_.read(bytes, size);
+    if (n > 0) pend_usb();  // service() re-arms an OUT endpoint paused for ring room
+    return n;
+  }
+  /// NVIC ISPR: the USB interrupt runs service() as soon as the main loop's priority allows.
+  void pend_usb() {
+    io_.write(board::nvic::bit_word(board::nvic::kIspr0, kUsbIrq), board::nvic::bit_of(kUsbIrq));
+  }
+  std::uint32_t link_stream_rate_Hz() const {
+    if (active_ == HostLinkId::lpuart1) return stream_rate::kLpuart1Hz;
+    return usb_.sending_pipe() == ::palp::usb::StreamPipe::hid ? stream_rate::kUsbHidHz
+                                                       : stream_rate::kUsbBulkHz;
+  }
+
+  /// One step of the calibration commit (at most one flash operation started, never a wait on
+  /// BSY); when it ends, the block that waited starts.
+  void advance_calibration() {
+    if (commit_state_ != fw::CommitState::erasing && commit_state_ != fw::CommitState::programming) {
+      if (pending_calibration_size_ == 0) return;
+      const std::size_t size = pending_calibration_size_;
+      pending_calibration_size_ = 0;
+      (void)begin_commit(pending_calibration_, size);
+      return;
+    }
+    commit_state_ = calibration_.poll();
+    if (commit_state_ == fw::CommitState::failed) ++calibration_failures_;
+  }
+
+  /// Polls the commit (and the one waiting) to the end: a wait of ~30 ms per commit, for
+  /// read_calibration and enter_bootloader only; bounded by the store's poll limit.
+  void finish_calibration() {
+    for (std::uint32_t n = 0; calibration_busy() && n < Calibration::kPollLimit; ++n) {
+      advance_calibration();
+    }
+  }
+
+  bool begin_commit(const std::uint8_t* bytes, std::size_t size) {
+    const bool started = calibration_.begin_write(bytes, size);  // the erase starts
+    commit_state_ = started ? fw::CommitState::erasing : fw::CommitState::failed;
+    if (!started) ++calibration_failures_;
+    return started;
   }
 
   void set_priority(std::uint32_t irq, std::uint8_t priority) {
@@ -377,7 +509,14 @@ class StmBoardT {
   Cpu& cpu_;
   Link& link_;
   BoardPlatform platform_;
-  RamCalibrationStore calibration_;
+  UsbHardware usb_hw_;
+  UsbDevice usb_;
+  HostLinkId active_ = HostLinkId::lpuart1;  // main loop only
+  Calibration calibration_;
+  fw::CommitState commit_state_ = fw::CommitState::idle;
+  std::uint8_t pending_calibration_[kPendingCalibrationBytes] = {};
+  std::size_t pending_calibration_size_ = 0;
+  std::uint32_t calibration_failures_ = 0;
   char serial_[25] = "000000000000000000000000";
   InitStatus init_status_ = InitStatus::ok;
 
@@ -413,7 +552,7 @@ namespace palp::stm32 {
 
 /// The target's board: memory-mapped registers, the Cortex-M core, link_uart's HostLink and
 /// adc.cpp's pressure buffer. Its constructor runs init() (the reset handler has set the clocks)
-/// and makes it the board the ADC1_2 interrupt (board_irqs.cpp) reaches. One per image.
+/// and makes it the board the ADC1_2 and USB_LP interrupts (board_irqs.cpp) reach. One per image.
 class StmBoard : public StmBoardT<Mmio, board::CortexM> {
  public:
   StmBoard();
@@ -421,9 +560,10 @@ class StmBoard : public StmBoardT<Mmio, board::CortexM> {
   StmBoard& operator=(const StmBoard&) = delete;
 };
 
-/// The board the ADC1_2 interrupt runs the tick on (board_irqs.cpp; StmBoard's constructor sets
-/// it, which also links that interrupt handler in from the library).
-void set_tick_irq_board(StmBoard* board);
+/// The board the ADC1_2 interrupt runs the tick on and the USB_LP interrupt services USB on
+/// (board_irqs.cpp; StmBoard's constructor sets it, which also links those handlers in from the
+/// library).
+void set_irq_board(StmBoard* board);
 
 static_assert(app::Board<StmBoard>);
 
