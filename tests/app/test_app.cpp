@@ -24,6 +24,7 @@ class FakeBoard {
   std::vector<std::uint8_t> rx;            // bytes the host sent, not yet read
   std::size_t link_takes = 1 << 20;        // bytes link_write accepts per call
   std::uint32_t missed = 0;                // reported at the next read_inputs
+  std::uint32_t stream_rate_Hz = 2000;     // identity().max_stream_rate_Hz (the link in use's)
   // --- what the app did ---
   std::vector<std::uint8_t> tx;            // bytes written to the link
   std::vector<std::uint32_t> tick_rates;   // start_tick calls
@@ -41,7 +42,7 @@ class FakeBoard {
     fw::DeviceIdentity id;
     id.board = "fake-board";
     id.serial = "FAKE-1";
-    id.max_stream_rate_Hz = 2000;
+    id.max_stream_rate_Hz = stream_rate_Hz;
     return id;
   }
   std::size_t read_calibration(std::uint8_t* bytes, std::size_t size) {
@@ -152,6 +153,20 @@ TEST(App, AHelloOnTheLinkIsAnsweredWithTheBoardsDeviceInfoOnTheLink) {
   ASSERT_EQ(infos.size(), 1u);
   EXPECT_STREQ(infos[0].board.bytes.data(), "fake-board");
   EXPECT_EQ(infos[0].max_stream_rate_Hz, 2000u);
+}
+
+TEST(App, WhenTheBoardsStreamRateChangesWithItsLinkTheNextDeviceInfoAndStreamLimitFollow) {
+  FakeBoard board;
+  App<FakeBoard> app(board);
+  app.boot();
+  board.stream_rate_Hz = 5000;  // e.g. a second, faster link delivered these bytes
+  board.host_sends(hello(), 1);
+  board.host_sends(GetDeviceInfo{}, 2);
+  app.step();
+  const auto infos = board.received<DeviceInfo>();
+  ASSERT_EQ(infos.size(), 2u);
+  EXPECT_EQ(infos[0].max_stream_rate_Hz, 5000u) << "re-read before the bytes are handled";
+  EXPECT_EQ(app.controller().max_stream_rate_Hz(), 5000u);
 }
 
 TEST(App, ALinkThatTakesFewBytesAtATimeStillGetsEveryByteInOrder) {

@@ -3,7 +3,7 @@
 //   boot       the board's identity, the stored calibration (blank or bad: the core's defaults,
 //              never a silent replacement), then the tick at the default control rate;
 //   tick ISR   board.read_inputs -> watchdog clock -> controller.tick -> board.apply_outputs;
-//   main loop  link bytes -> controller.receive (which holds the tick through the board's
+//   main loop  link bytes -> (the board's stream rate for the link in use) -> controller.receive (which holds the tick through the board's
 //              hold_tick/release_tick while a command changes its state), a rate change -> the
 //              tick timer, controller.service every few ticks,
 //              controller.transmit -> link, a calibration commit -> board storage, a bootloader
@@ -54,7 +54,10 @@ class App {
   /// One pass of the main loop (run() repeats it; tests/app calls it over a fake board).
   void step() {
     const std::size_t received = board_.link_read(rx_, sizeof rx_);
-    if (received > 0) receive(received);
+    if (received > 0) {
+      follow_link_stream_rate();
+      receive(received);
+    }
     const std::uint32_t ticks = ticks_.load(std::memory_order_relaxed);
     if (received > 0 || ticks - serviced_at_ >= kServiceTicks) {
       serviced_at_ = ticks;
@@ -99,6 +102,15 @@ class App {
     board_.hold_tick();
     if (board_.start_tick(rate, TickHandler{&App::tick_entry, this})) rate_Hz_ = rate;
     board_.release_tick();
+  }
+
+  // A board with two links advertises the stream rate of the one in use, which received bytes
+  // may have just changed (board.hpp identity()): the core takes it before handling them, so
+  // the DeviceInfo and StreamConfigure that answer them use that link's limit.
+  void follow_link_stream_rate() {
+    const fw::DeviceIdentity id = board_.identity();
+    if (id.max_stream_rate_Hz != controller_.identity().max_stream_rate_Hz)
+      controller_.set_identity(id);
   }
 
   static void hold_entry(void* self) { static_cast<App*>(self)->board_.hold_tick(); }

@@ -41,6 +41,10 @@ concept Board = requires(B& b, const B& cb, fw::TickInputs& in, const fw::TickOu
                          void* ctx) {
   // --- boot --------------------------------------------------------------------------------
   /// Who the device is: board name, serial, git hash, max_stream_rate_Hz the link carries.
+  /// Read at boot, and again after link_read() delivered bytes: a board with two links (the
+  /// STM32's LPUART1 and USB) reports the stream rate of the link in use, which changes when
+  /// the other link's host starts talking; the app hands a changed rate to the core
+  /// (Controller::set_identity) before it handles those bytes. Everything else must not change.
   { cb.identity() } -> std::convertible_to<fw::DeviceIdentity>;
   /// Copies the stored calibration block (at most `size` bytes) into `bytes`; returns the
   /// bytes copied. Erased storage reads as 0xFF (the core reports it as blank and keeps its
@@ -81,7 +85,12 @@ concept Board = requires(B& b, const B& cb, fw::TickInputs& in, const fw::TickOu
   { b.link_write(const_bytes, size) } -> std::same_as<std::size_t>;
 
   // --- calibration storage, power, reset (main loop) ------------------------------------------
-  /// Stores a calibration block (the core's committed_block()); true once stored.
+  /// Stores a calibration block (the core's committed_block()); true once stored, or once a
+  /// store that the board completes from idle() has started: a flash commit takes tens of ms
+  /// (page erase), which a main-loop call must not wait for (the link and a watchdog's
+  /// main-loop rule would stall; the STM32 board commits one flash step per idle() and does not
+  /// sleep meanwhile). false: it cannot be stored. A board that stores later keeps a block
+  /// written meanwhile and stores it next, and read_calibration() returns the newest written.
   { b.write_calibration(const_bytes, size) } -> std::same_as<bool>;
   /// Sleeps until an interrupt unless has_work(ctx) is true (WFI: a polling firmware burns a
   /// host core under QEMU and power on the bench).
