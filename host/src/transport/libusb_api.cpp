@@ -1,6 +1,8 @@
 // The real UsbApi (usb_api.hpp): each call is the libusb call of the same name, nothing more.
 #include <libusb.h>
 
+#include <utility>
+
 #include "transport/usb_api.hpp"
 
 namespace palp::detail {
@@ -135,6 +137,41 @@ class LibusbApi final : public UsbApi {
                     int& transferred, unsigned timeout_ms) override {
     transferred = 0;
     return libusb_bulk_transfer(hnd(handle), endpoint, data, length, &transferred, timeout_ms);
+  }
+
+  int get_active_config_interfaces(UsbDevice device, std::vector<UsbAltSetting>& out) override {
+    out.clear();
+    libusb_config_descriptor* config = nullptr;
+    const int r = libusb_get_active_config_descriptor(dev(device), &config);
+    if (r < 0) return r;
+    for (int i = 0; i < config->bNumInterfaces; ++i) {
+      const libusb_interface& itf = config->interface[i];
+      for (int a = 0; a < itf.num_altsetting; ++a) {
+        const libusb_interface_descriptor& d = itf.altsetting[a];
+        UsbAltSetting s;
+        s.interface_number = d.bInterfaceNumber;
+        s.alt_setting = d.bAlternateSetting;
+        s.interface_class = d.bInterfaceClass;
+        s.interface_subclass = d.bInterfaceSubClass;
+        s.interface_protocol = d.bInterfaceProtocol;
+        s.i_interface = d.iInterface;
+        if (d.extra != nullptr && d.extra_length > 0) s.extra.assign(d.extra, d.extra + d.extra_length);
+        out.push_back(std::move(s));
+      }
+    }
+    libusb_free_config_descriptor(config);
+    return LIBUSB_SUCCESS;
+  }
+
+  int set_interface_alt_setting(UsbHandle handle, int interface, int alt) override {
+    return libusb_set_interface_alt_setting(hnd(handle), interface, alt);
+  }
+
+  int control_transfer(UsbHandle handle, std::uint8_t request_type, std::uint8_t request,
+                       std::uint16_t value, std::uint16_t index, std::uint8_t* data,
+                       std::uint16_t length, unsigned timeout_ms) override {
+    return libusb_control_transfer(hnd(handle), request_type, request, value, index, data, length,
+                                   timeout_ms);
   }
 
  private:

@@ -55,6 +55,17 @@ struct UsbDeviceDescriptor {
   std::uint8_t i_product = 0, i_serial = 0;  ///< string descriptor indices (0 = none)
 };
 
+/// One alternate setting of an interface of the active configuration
+/// (libusb_interface_descriptor): what the DfuSe client (host/src/dfu) reads of it.
+struct UsbAltSetting {
+  std::uint8_t interface_number = 0, alt_setting = 0;
+  std::uint8_t interface_class = 0, interface_subclass = 0, interface_protocol = 0;
+  std::uint8_t i_interface = 0;  ///< string index of its name (DfuSe: the memory-layout string)
+  /// The class-specific descriptors that follow it in the configuration (libusb's `extra`),
+  /// e.g. the DFU functional descriptor (usb-dfu-facts.md §5.1).
+  std::vector<std::uint8_t> extra;
+};
+
 /// The libusb calls the SDK makes. Every function returns 0 (or a count) on success and a
 /// negative UsbError on failure, as libusb does. One object is one libusb context.
 class UsbApi {
@@ -88,6 +99,30 @@ class UsbApi {
   /// passes 0.
   virtual int bulk_transfer(UsbHandle handle, std::uint8_t endpoint, std::uint8_t* data,
                             int length, int& transferred, unsigned timeout_ms) = 0;
+
+  // ---- used by the DfuSe client only. Not pure: a UsbApi that never serves DFU (a test's
+  // backend) need not implement them, and then answers LIBUSB_ERROR_NOT_SUPPORTED.
+
+  /// libusb_get_active_config_descriptor, flattened: every alternate setting of every interface
+  /// of the device's active configuration, in the order of the descriptor.
+  virtual int get_active_config_interfaces(UsbDevice /*device*/,
+                                           std::vector<UsbAltSetting>& out) {
+    out.clear();
+    return kUsbErrorNotSupported;
+  }
+  /// libusb_set_interface_alt_setting (the interface must be claimed).
+  virtual int set_interface_alt_setting(UsbHandle /*handle*/, int /*interface*/, int /*alt*/) {
+    return kUsbErrorNotSupported;
+  }
+  /// libusb_control_transfer: a control transfer with this SETUP packet; an OUT request sends
+  /// length bytes of data, an IN request receives up to length bytes into it. Returns the bytes
+  /// moved or an error (kUsbErrorPipe: the device stalled the request). timeout_ms > 0.
+  virtual int control_transfer(UsbHandle /*handle*/, std::uint8_t /*request_type*/,
+                               std::uint8_t /*request*/, std::uint16_t /*value*/,
+                               std::uint16_t /*index*/, std::uint8_t* /*data*/,
+                               std::uint16_t /*length*/, unsigned /*timeout_ms*/) {
+    return kUsbErrorNotSupported;
+  }
 };
 
 /// The real UsbApi over libusb (libusb_api.cpp).

@@ -21,6 +21,14 @@ class FakeUsb final : public detail::UsbApi {
     std::string serial, product;
     int open_error = 0;    ///< what open() returns (0: success)
     bool kernel_driver = false;
+    std::vector<detail::UsbAltSetting> interfaces;  ///< the active configuration's alt settings
+  };
+  /// One control transfer as handed to libusb.
+  struct Control {
+    std::uint8_t request_type, request;
+    std::uint16_t value, index, length;
+    unsigned timeout_ms;
+    std::vector<std::uint8_t> bytes;  ///< OUT: the bytes sent
   };
   /// One bulk transfer as handed to libusb.
   struct Transfer {
@@ -45,6 +53,10 @@ class FakeUsb final : public detail::UsbApi {
   int claim_result = 0;
   std::deque<In> in;    ///< empty: an IN transfer times out with no bytes
   std::deque<Out> out;  ///< empty: an OUT transfer takes every byte
+  /// What the next control transfer returns (OUT: only its result; IN: its bytes, or its
+  /// result when negative); empty: a STALL. The DFU model (tests/host/dfu) plays a whole device.
+  std::deque<In> control_in;
+  std::vector<Control> controls;
   std::vector<std::string> calls;
   std::vector<Transfer> transfers;
 
@@ -125,8 +137,39 @@ class FakeUsb final : public detail::UsbApi {
     transferred = n;
     return i.result;
   }
+  int get_active_config_interfaces(detail::UsbDevice d,
+                                   std::vector<detail::UsbAltSetting>& o) override {
+    o = dev(d).interfaces;
+    return 0;
+  }
+  int set_interface_alt_setting(detail::UsbHandle h, int i, int alt) override {
+    calls.push_back("set_interface_alt_setting " + idx(h) + " " + std::to_string(i) + " " +
+                    std::to_string(alt));
+    return 0;
+  }
+  int control_transfer(detail::UsbHandle, std::uint8_t type, std::uint8_t request,
+                       std::uint16_t value, std::uint16_t index, std::uint8_t* data,
+                       std::uint16_t length, unsigned timeout_ms) override {
+    Control c{type, request, value, index, length, timeout_ms, {}};
+    if ((type & 0x80) == 0 && data != nullptr) c.bytes.assign(data, data + length);
+    controls.push_back(c);
+    if (control_in.empty()) return detail::kUsbErrorPipe;
+    if ((type & 0x80) == 0) {
+      const int r = control_in.front().result;
+      control_in.pop_front();
+      return r;
+    }
+    return take(control_in, data, length);
+  }
 
  private:
+  static int take(std::deque<In>& queue, std::uint8_t* data, int length) {
+    const In i = queue.front();
+    queue.pop_front();
+    const int n = std::min(length, static_cast<int>(i.bytes.size()));
+    std::copy(i.bytes.begin(), i.bytes.begin() + n, data);
+    return i.result < 0 ? i.result : n;
+  }
   Device& dev(detail::UsbDevice d) { return devices[static_cast<std::size_t>(d) - 100]; }
   static std::string idx(detail::UsbHandle h) {
     return std::to_string(static_cast<std::size_t>(h) - 1);
