@@ -20,12 +20,18 @@ constexpr std::size_t kRomTransferSize = 2048;  // the ROM's wTransferSize (fact
 constexpr std::uint8_t kDfuFunctional = 0x21;   // descriptor type (facts §5.1)
 constexpr std::size_t kProgramUnit = 8;  // the G474 programs double words (stm32g474 facts §6)
 
-constexpr const char* kEraseAdvice =
-    "The image's pages may be partly erased, so the application may not start: flash the image "
-    "again (palpctl flash IMAGE, or dfu-util -d 0483:df11 -a 0 -s 0x08000000:leave -D IMAGE.bin)";
-constexpr const char* kDownloadAdvice =
-    "The image in flash is incomplete and will not start: flash it again (palpctl flash IMAGE, "
-    "or dfu-util -d 0483:df11 -a 0 -s 0x08000000:leave -D IMAGE.bin)";
+// The fallback command names the image's address (stm32g474 facts §6, "Flash command").
+std::string flash_again(std::uint32_t address) {
+  return "flash the image again (palpctl flash IMAGE, or dfu-util -d 0483:df11 -a 0 -s " +
+         hex32(address) + ":leave -D IMAGE.bin)";
+}
+std::string erase_advice(std::uint32_t address) {
+  return "The image's pages may be partly erased, so the application may not start: " +
+         flash_again(address);
+}
+std::string download_advice(std::uint32_t address) {
+  return "The image in flash is incomplete and will not start: " + flash_again(address);
+}
 constexpr const char* kVerifyAdvice =
     "Nothing was changed by reading: read it back again; if this repeats, flash the image again";
 constexpr const char* kLeaveAdvice =
@@ -208,8 +214,7 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
   impl->session.emplace(usb, impl->handle, kDfuInterface, std::move(options));
   try {
     impl->session->to_idle(
-        {"bringing the DFU device " + id + " to dfuIDLE", {},
-         "Unplug it and put it back in DFU mode (hold BOOT0 high while resetting the board)"});
+        {"bringing the DFU device " + id + " to dfuIDLE", {}, "Then try again"});
   } catch (...) {
     impl->close();
     throw;
@@ -220,6 +225,7 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
 void DfuseDevice::erase_pages(std::uint32_t address, std::size_t size, const ProgressFn& progress) {
   const auto pages = impl_->layout.pages(address, size, true, false);
   internal::Session& s = impl_->s();
+  const std::string advice = erase_advice(address);
   std::size_t total = 0, done = 0;
   for (const auto& p : pages) total += p.second;
   for (const auto& [page, page_size] : pages) {
@@ -227,11 +233,11 @@ void DfuseDevice::erase_pages(std::uint32_t address, std::size_t size, const Pro
                                  static_cast<std::uint8_t>(page >> 8),
                                  static_cast<std::uint8_t>(page >> 16),
                                  static_cast<std::uint8_t>(page >> 24)};
-    s.command(cmd, {"erasing the page at " + hex32(page), page, kEraseAdvice});
+    s.command(cmd, {"erasing the page at " + hex32(page), page, advice});
     done += page_size;
     if (progress) progress({Progress::Phase::erase, done, total});
   }
-  if (!pages.empty()) impl_->end_in_idle({"ending the erase", address, kEraseAdvice});
+  if (!pages.empty()) impl_->end_in_idle({"ending the erase", address, advice});
 }
 
 void DfuseDevice::mass_erase(const ProgressFn& progress) {
@@ -240,9 +246,10 @@ void DfuseDevice::mass_erase(const ProgressFn& progress) {
   for (const MemorySegment& seg : impl_->layout.segments)
     if (seg.erasable) total += std::size_t{seg.page_size} * seg.pages;
   const std::uint8_t cmd[1] = {0x41};
-  s.command(cmd, {"mass-erasing the flash", {}, kEraseAdvice});
+  const std::uint32_t first = impl_->layout.segments.front().start;
+  s.command(cmd, {"mass-erasing the flash", {}, erase_advice(first)});
   if (progress) progress({Progress::Phase::erase, total, total});
-  impl_->end_in_idle({"ending the mass erase", {}, kEraseAdvice});
+  impl_->end_in_idle({"ending the mass erase", {}, erase_advice(first)});
 }
 
 void DfuseDevice::download(std::uint32_t address, std::span<const std::uint8_t> bytes,
@@ -257,6 +264,7 @@ void DfuseDevice::download(std::uint32_t address, std::span<const std::uint8_t> 
                      address);
   internal::Session& s = impl_->s();
   const std::size_t block = impl_->transfer_size;
+  const std::string advice = download_advice(address);
   std::vector<std::uint8_t> chunk;
   for (std::size_t off = 0; off < bytes.size(); off += block) {
     const std::size_t n = std::min(block, bytes.size() - off);
@@ -265,11 +273,11 @@ void DfuseDevice::download(std::uint32_t address, std::span<const std::uint8_t> 
                  bytes.begin() + static_cast<std::ptrdiff_t>(off + n));
     chunk.resize((n + kProgramUnit - 1) / kProgramUnit * kProgramUnit, 0xFF);  // erased value
     const std::string what = "writing " + std::to_string(n) + " bytes at " + hex32(at);
-    s.set_address(at, {what + " (setting the address pointer)", at, kDownloadAdvice});
-    s.download_block(2, chunk, {what, at, kDownloadAdvice});
+    s.set_address(at, {what + " (setting the address pointer)", at, advice});
+    s.download_block(2, chunk, {what, at, advice});
     if (progress) progress({Progress::Phase::download, off + n, bytes.size()});
   }
-  if (!bytes.empty()) impl_->end_in_idle({"ending the download", address, kDownloadAdvice});
+  if (!bytes.empty()) impl_->end_in_idle({"ending the download", address, advice});
 }
 
 std::vector<std::uint8_t> DfuseDevice::upload(std::uint32_t address, std::size_t size,

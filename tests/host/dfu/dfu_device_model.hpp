@@ -46,6 +46,9 @@ struct DfuFaults {
   std::optional<std::uint32_t> write_error_page;   ///< programming into this page: errWRITE
   std::optional<std::uint32_t> verify_error_page;  ///< programming into it: a bit flips, errVERIFY
   std::optional<std::uint8_t> stall_request;  ///< the next request with this bRequest is STALLed
+  /// false: the STALL puts the device in dfuERROR/errSTALLEDPKT (DFU 1.1's rule); true: the state
+  /// stays (a ROM that stalls GETSTATUS while it programs, facts §5.5)
+  bool stall_keeps_state = false;
   int unplug_after = -1;     ///< control transfers served before the device vanishes (-1: never)
   bool stuck_busy = false;   ///< a command or block never finishes (dfuDNBUSY forever)
 };
@@ -94,6 +97,7 @@ class DfuRom {
     ++transfers;
     if (faults.stall_request && *faults.stall_request == request) {
       faults.stall_request.reset();
+      if (faults.stall_keeps_state) return detail::kUsbErrorPipe;
       return stall(false);
     }
     const bool in = (type & 0x80) != 0;
@@ -369,9 +373,11 @@ class DfuBus final : public detail::UsbApi {
                        std::uint16_t value, std::uint16_t index, std::uint8_t* data,
                        std::uint16_t length, unsigned timeout_ms) override {
     if (timeout_ms == 0) ++zero_timeouts;
+    max_timeout_ms = std::max(max_timeout_ms, timeout_ms);
     return rom.control(type, request, value, index, data, length);
   }
   int zero_timeouts = 0;  ///< control transfers handed "no timeout" (must stay 0)
+  unsigned max_timeout_ms = 0;  ///< the longest timeout a control transfer was given
 };
 
 }  // namespace palp::dfumodel

@@ -16,6 +16,10 @@ namespace palp::dfutest {
 using dfumodel::DfuRom;
 using dfumodel::DfuState;
 using dfumodel::DfuStatus;
+using dfu::DfuseError;
+
+inline constexpr std::uint32_t kBase = 0x08000000;         ///< the flash and the image
+inline constexpr std::uint32_t kCalibration = 0x0807F000;  ///< the calibration pages (2 x 2 KB)
 
 /// A recognisable image: byte k is a mix of k, never all 0xFF in a row.
 inline std::vector<std::uint8_t> test_image(std::size_t size) {

@@ -9,12 +9,9 @@
 namespace palp::dfutest {
 namespace {
 
-using dfu::DfuseError;
 using dfu::Progress;
 using std::chrono::milliseconds;
 
-constexpr std::uint32_t kBase = 0x08000000;
-constexpr std::uint32_t kCalibration = 0x0807F000;  // the calibration pages (2 x 2 KB)
 
 TEST_F(DfuRig, OpenClaimsAlt0AndReadsLayoutTransferSizeAndSerial) {
   dfu::DfuseDevice d = open();
