@@ -21,7 +21,6 @@ class FakeUsb final : public detail::UsbApi {
     std::string serial, product;
     int open_error = 0;    ///< what open() returns (0: success)
     bool kernel_driver = false;
-    std::vector<detail::UsbAltSetting> interfaces;  ///< the active configuration's alt settings
   };
   /// One control transfer as handed to libusb.
   struct Control {
@@ -57,6 +56,7 @@ class FakeUsb final : public detail::UsbApi {
   /// result when negative); empty: a STALL. The DFU model (tests/host/dfu) plays a whole device.
   std::deque<In> control_in;
   std::vector<Control> controls;
+  std::vector<detail::UsbAltSetting> interfaces;  ///< every device's active configuration
   std::vector<std::string> calls;
   std::vector<Transfer> transfers;
 
@@ -137,9 +137,9 @@ class FakeUsb final : public detail::UsbApi {
     transferred = n;
     return i.result;
   }
-  int get_active_config_interfaces(detail::UsbDevice d,
+  int get_active_config_interfaces(detail::UsbDevice,
                                    std::vector<detail::UsbAltSetting>& o) override {
-    o = dev(d).interfaces;
+    o = interfaces;
     return 0;
   }
   int set_interface_alt_setting(detail::UsbHandle h, int i, int alt) override {
