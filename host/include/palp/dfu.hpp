@@ -33,8 +33,9 @@ class UsbApi;
 
 namespace palp::dfu {
 
-/// Where a long call is, reported after each block (erase: each page; download/verify: each
-/// wTransferSize block; manifest: once). done/total are bytes (erase: bytes of the pages erased).
+/// Where a long call is, reported after each step (erase: each page; download/verify: each
+/// wTransferSize block; manifest: once, done = total = 1, when leave() has sent its request).
+/// done/total are bytes otherwise (erase: bytes of the pages erased).
 struct Progress {
   enum class Phase { erase, download, verify, manifest } phase;
   std::size_t done, total;
@@ -181,7 +182,7 @@ class DfuseDevice {
   /// Starts the application: SET_ADDRESS_POINTER(address), DNLOAD of length 0, GETSTATUS
   /// (manifest). The device then resets or disconnects: an unplug or an error on that last
   /// GETSTATUS is expected and not an error. The DfuseDevice is closed afterwards.
-  void leave(std::uint32_t address);
+  void leave(std::uint32_t address, const ProgressFn& progress = {});
 
  private:
   struct Impl;

@@ -30,8 +30,8 @@ Session::Session(std::shared_ptr<detail::UsbApi> usb, detail::UsbHandle handle, 
                  DfuseOptions options)
     : usb_(std::move(usb)), handle_(handle), interface_(interface), options_(std::move(options)) {}
 
-void Session::sleep(std::chrono::milliseconds d) const {
-  if (options_.sleep) options_.sleep(d);
+void sleep_for(const DfuseOptions& options, std::chrono::milliseconds d) {
+  if (options.sleep) options.sleep(d);
   else std::this_thread::sleep_for(d);
 }
 
@@ -178,7 +178,7 @@ void Session::download_block(std::uint16_t block, std::span<const std::uint8_t> 
     const int r = raw_status(*this, s);
     if (r == detail::kUsbErrorPipe && stalls < kStatusStallsTolerated) {
       ++stalls;  // some ROMs stall GETSTATUS while they program (facts §5.5): wait, ask again
-      sleep(wait);
+      sleep_for(options_, wait);
       waited += wait;
       continue;
     }
@@ -198,7 +198,7 @@ void Session::download_block(std::uint16_t block, std::span<const std::uint8_t> 
                            " ms; unplug it and put it back in DFU mode (" + kBootloaderHint +
                            "). " + doing.advice,
                        doing.address, s.state, s.status);
-    sleep(wait);  // bwPollTimeout: the device is not to be asked again before
+    sleep_for(options_, wait);  // bwPollTimeout: the device is not to be asked again before
     waited += wait;
   }
 }

@@ -34,6 +34,9 @@ struct Doing {
   std::string advice;
 };
 
+/// Waits d through the options' sleep hook (std::this_thread::sleep_for when it is empty).
+void sleep_for(const DfuseOptions& options, std::chrono::milliseconds d);
+
 class Session {
  public:
   Session(std::shared_ptr<detail::UsbApi> usb, detail::UsbHandle handle, int interface,
@@ -62,8 +65,6 @@ class Session {
   /// The raw control transfer (class, interface); returns libusb's result.
   int control(bool in, Request request, std::uint16_t value, std::uint8_t* data,
               std::uint16_t length);
-  /// Sleeps through the options' hook.
-  void sleep(std::chrono::milliseconds d) const;
 
   /// Throws the DfuseError for a failed transfer (r < 0): unplugged, stalled (after reading the
   /// device's status and recovering), timeout, or other.

@@ -106,7 +106,6 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
                                     detail::usb_error_name(r) + ")", {}, {}, {}, r);
   auto impl = std::make_unique<Impl>();
   impl->usb = usb;
-  const internal::Session idle_probe(usb, {}, kDfuInterface, options);  // for sleep()
   std::vector<detail::UsbAltSetting> alts;
   std::vector<std::string> seen;
   int open_error = 0;
@@ -131,8 +130,12 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
       std::string serial;
       if (desc.i_serial != 0) usb->get_string_descriptor_ascii(h, desc.i_serial, serial);
       seen.push_back(serial.empty() ? "(no serial)" : serial);
-      if ((!target.serial.empty() && serial != target.serial) ||
-          usb->get_active_config_interfaces(d, alts) < 0) {
+      if (!target.serial.empty() && serial != target.serial) {
+        usb->close(h);
+        continue;
+      }
+      if (const int r = usb->get_active_config_interfaces(d, alts); r < 0) {
+        open_error = r;  // its configuration cannot be read: named in the not-found message
         usb->close(h);
         continue;
       }
@@ -143,7 +146,7 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
     }
     usb->free_device_list();
     if (impl->open || waited >= wait) break;
-    idle_probe.sleep(options.open_poll);
+    internal::sleep_for(options, options.open_poll);
   }
   if (!impl->open) {
     usb->exit();
@@ -159,7 +162,7 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
         "no device in DFU mode (" + id + (target.serial.empty() ? "" : ", serial " + target.serial) +
             ") found within " + std::to_string(wait.count()) + " ms" +
             (seen.empty() ? "" : " (found: " + found + ")") +
-            (open_error != 0 ? "; one could not be opened: " + detail::usb_error_name(open_error)
+            (open_error != 0 ? "; one could not be opened or read: " + detail::usb_error_name(open_error)
                              : "") +
             "; put the controller into its bootloader (palpctl flash does it by EnterBootloader; "
             "by hand: hold BOOT0 high while resetting the board) and check the cable",
@@ -319,7 +322,7 @@ std::vector<std::uint8_t> DfuseDevice::upload(std::uint32_t address, std::size_t
   return out;
 }
 
-void DfuseDevice::leave(std::uint32_t address) {
+void DfuseDevice::leave(std::uint32_t address, const ProgressFn& progress) {
   if (impl_->layout.find(address) == nullptr)
     throw DfuseError(DfuseError::Kind::refused_address,
                      "starting the application at " + hex32(address) +
@@ -342,6 +345,7 @@ void DfuseDevice::leave(std::uint32_t address) {
     s.fail_status(st, {what, address, "Reset or re-plug the board; if the application does "
                                       "not start, flash the image again"});
   }
+  if (progress) progress({Progress::Phase::manifest, 1, 1});
   impl_->close();
 }
 

@@ -159,8 +159,10 @@ TEST_F(DfuRig, LeaveStartsTheApplicationAtTheAddressAndClosesTheDevice) {
   dfu::DfuseDevice d = open();
   d.erase_pages(kBase, image.size(), {});
   d.download(kBase, image, {});
-  d.leave(kBase);
+  d.leave(kBase, record());
   EXPECT_TRUE(rom.reset);
+  ASSERT_EQ(progress.size(), 1u);
+  EXPECT_EQ(progress[0].phase, Progress::Phase::manifest);
   EXPECT_EQ(rom.started_at, kBase);
   EXPECT_EQ(rom.illegal_requests, 0);
   EXPECT_EQ(std::string(error_of([&] { d.upload(kBase, 16, {}); }).what()),
