@@ -240,6 +240,9 @@ class DfuRom {
         break;
       case DfuState::dfuMANIFEST_SYNC:  // reports dfuMANIFEST and starts the application
         reply = DfuState::dfuMANIFEST;
+        // manifestation-intolerant (bmAttributes 0x0B, facts §5.1): it would wait for a reset in
+        // dfuMANIFEST-WAIT-RESET; the ROM resets itself (facts §5.6), so the device is gone
+        state_ = DfuState::dfuMANIFEST_WAIT_RESET;
         reset = true;
         started_at = pointer_;
         break;
@@ -325,8 +328,10 @@ class DfuBus final : public detail::UsbApi {
     o = {0x0483, 0xDF11, 0x2200, 2, 3};
     return 0;
   }
+  int open_error = 0;  ///< what open() returns (LIBUSB_ERROR_ACCESS: no udev rule)
   int open(detail::UsbDevice, detail::UsbHandle& h) override {
     calls.push_back("open");
+    if (open_error != 0) return open_error;
     h = static_cast<detail::UsbHandle>(1);
     return 0;
   }

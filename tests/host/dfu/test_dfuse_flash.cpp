@@ -54,6 +54,17 @@ TEST_F(DfuRig, OpenRefusesAnotherSerialListingTheOneFound) {
             "cable");
 }
 
+TEST_F(DfuRig, OpenWithoutPermissionSaysHowToGrantIt) {
+  bus->open_error = detail::kUsbErrorAccess;
+  const DfuseError e = error_of([&] { open(); });
+  EXPECT_EQ(e.kind(), DfuseError::Kind::access);
+  EXPECT_EQ(std::string(e.what()),
+            "cannot open the DFU device 0483:df11 (LIBUSB_ERROR_ACCESS): install the udev rules "
+            "(host/udev/70-palp.rules, e.g. into /etc/udev/rules.d, then `udevadm control "
+            "--reload && udevadm trigger` and re-plug) or run as root");
+  EXPECT_EQ(rom.transfers, 0);
+}
+
 TEST_F(DfuRig, OpenClearsADeviceLeftInDfuErrorByCLRSTATUS) {
   rom.force(DfuState::dfuERROR, DfuStatus::errWRITE);
   dfu::DfuseDevice d = open();
@@ -161,6 +172,7 @@ TEST_F(DfuRig, LeaveStartsTheApplicationAtTheAddressAndClosesTheDevice) {
   d.download(kBase, image, {});
   d.leave(kBase, record());
   EXPECT_TRUE(rom.reset);
+  EXPECT_EQ(rom.state(), DfuState::dfuMANIFEST_WAIT_RESET);
   ASSERT_EQ(progress.size(), 1u);
   EXPECT_EQ(progress[0].phase, Progress::Phase::manifest);
   EXPECT_EQ(rom.started_at, kBase);
