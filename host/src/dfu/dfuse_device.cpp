@@ -157,13 +157,15 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
                        {}, {}, {}, open_error);
     std::string found;
     for (const std::string& s : seen) found += (found.empty() ? "" : ", ") + s;
+    const std::string named = target.serial.empty() ? "" : ", serial " + target.serial;
+    const std::string unopened =
+        open_error != 0 ? "; one could not be opened or read: " + detail::usb_error_name(open_error)
+                        : "";
     throw DfuseError(
         Kind::not_found,
-        "no device in DFU mode (" + id + (target.serial.empty() ? "" : ", serial " + target.serial) +
-            ") found within " + std::to_string(wait.count()) + " ms" +
-            (seen.empty() ? "" : " (found: " + found + ")") +
-            (open_error != 0 ? "; one could not be opened or read: " + detail::usb_error_name(open_error)
-                             : "") +
+        "no device in DFU mode (" + id + named + ") found within " +
+            std::to_string(wait.count()) + " ms" +
+            (seen.empty() ? "" : " (found: " + found + ")") + unopened +
             "; put the controller into its bootloader (palpctl flash does it by EnterBootloader; "
             "by hand: hold BOOT0 high while resetting the board) and check the cable",
         {}, {}, {}, open_error);
@@ -186,12 +188,12 @@ DfuseDevice DfuseDevice::open(std::shared_ptr<detail::UsbApi> usb, const DfuseTa
     impl->open = false;  // nothing claimed to release
     usb->close(impl->handle);
     usb->exit();
+    std::string why;
+    if (r == detail::kUsbErrorBusy) why = " (another program, e.g. dfu-util, has it open)";
+    if (r == detail::kUsbErrorAccess) why = std::string("; ") + detail::kPermissionHint;
     throw DfuseError(r == detail::kUsbErrorAccess ? Kind::access : Kind::usb,
-                     "cannot claim the DFU interface of " + id + ": " + detail::usb_error_name(r) +
-                         (r == detail::kUsbErrorBusy
-                              ? " (another program, e.g. dfu-util, has it open)"
-                              : r == detail::kUsbErrorAccess ? std::string("; ") + detail::kPermissionHint
-                                                             : std::string()),
+                     "cannot claim the DFU interface of " + id + ": " +
+                         detail::usb_error_name(r) + why,
                      {}, {}, {}, r);
   }
   if (const int r = usb->set_interface_alt_setting(impl->handle, kDfuInterface, 0); r < 0)
@@ -308,7 +310,8 @@ std::vector<std::uint8_t> DfuseDevice::upload(std::uint32_t address, std::size_t
       const std::uint32_t at = address + static_cast<std::uint32_t>(off);
       const Doing doing{"reading " + std::to_string(n) + " bytes at " + hex32(at), at,
                         kVerifyAdvice};
-      const std::size_t got = s.upload_block(static_cast<std::uint16_t>(num), out.data() + off, n, doing);
+      const std::size_t got =
+          s.upload_block(static_cast<std::uint16_t>(num), out.data() + off, n, doing);
       if (got != n)
         throw DfuseError(DfuseError::Kind::protocol,
                          doing.what + " failed: the device sent " + std::to_string(got) +

@@ -113,9 +113,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> MemoryLayout::pages(
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
   const std::uint64_t end = std::uint64_t{address} + size;
   const auto refuse = [&](std::uint64_t at, const std::string& why) {
+    const std::string range =
+        internal::hex32(address) + ".." + internal::hex32(static_cast<std::uint32_t>(end - 1));
     throw DfuseError(DfuseError::Kind::refused_address,
-                     internal::hex32(address) + ".." + internal::hex32(static_cast<std::uint32_t>(end - 1)) +
-                         " (" + std::to_string(size) + " bytes) refused before anything was sent: " +
+                     range + " (" + std::to_string(size) +
+                         " bytes) refused before anything was sent: " +
                          internal::hex32(static_cast<std::uint32_t>(at)) + " " + why +
                          " in the device's memory layout \"" + name + "\"; check the image's "
                          "address and size",

@@ -155,7 +155,8 @@ class LibusbApi final : public UsbApi {
         s.interface_subclass = d.bInterfaceSubClass;
         s.interface_protocol = d.bInterfaceProtocol;
         s.i_interface = d.iInterface;
-        if (d.extra != nullptr && d.extra_length > 0) s.extra.assign(d.extra, d.extra + d.extra_length);
+        if (d.extra != nullptr && d.extra_length > 0)
+          s.extra.assign(d.extra, d.extra + d.extra_length);
         out.push_back(std::move(s));
       }
     }

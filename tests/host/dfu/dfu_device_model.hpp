@@ -286,7 +286,7 @@ class DfuRom {
     const std::uint64_t end = std::uint64_t{kFlashBase} + kFlashSize;
     const std::uint16_t n =
         a >= end ? 0 : static_cast<std::uint16_t>(std::min<std::uint64_t>(length, end - a));
-    if (n > 0) std::copy(at(static_cast<std::uint32_t>(a)), at(static_cast<std::uint32_t>(a)) + n, data);
+    if (n > 0) std::copy_n(at(static_cast<std::uint32_t>(a)), n, data);
     state_ = n < length ? DfuState::dfuIDLE : DfuState::dfuUPLOAD_IDLE;  // short reply ends it
     return n;
   }

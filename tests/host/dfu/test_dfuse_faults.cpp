@@ -14,7 +14,8 @@ using Kind = DfuseError::Kind;
 const std::string kFlashAgain =
     "flash the image again (palpctl flash IMAGE, or dfu-util -d 0483:df11 -a 0 -s "
     "0x08000000:leave -D IMAGE.bin)";
-const std::string kIncomplete = "The image in flash is incomplete and will not start: " + kFlashAgain;
+const std::string kIncomplete =
+    "The image in flash is incomplete and will not start: " + kFlashAgain;
 const std::string kHoldBoot0 =
     "to reach the bootloader again, hold BOOT0 high while resetting the board";
 

@@ -45,8 +45,8 @@ TEST_F(DfuRig, OpenGivesUpAfterTheWaitSayingHowToEnterTheBootloader) {
 }
 
 TEST_F(DfuRig, OpenRefusesAnotherSerialListingTheOneFound) {
-  const DfuseError e =
-      error_of([&] { dfu::DfuseDevice::open(bus, {"OTHER", 0x0483, 0xDF11}, milliseconds{0}, options()); });
+  const DfuseError e = error_of(
+      [&] { dfu::DfuseDevice::open(bus, {"OTHER", 0x0483, 0xDF11}, milliseconds{0}, options()); });
   EXPECT_EQ(std::string(e.what()),
             "no device in DFU mode (0483:df11, serial OTHER) found within 0 ms (found: "
             "206C35A35430); put the controller into its bootloader (palpctl flash does it by "
