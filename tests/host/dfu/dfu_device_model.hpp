@@ -49,6 +49,10 @@ struct DfuFaults {
   /// false: the STALL puts the device in dfuERROR/errSTALLEDPKT (DFU 1.1's rule); true: the state
   /// stays (a ROM that stalls GETSTATUS while it programs, facts §5.5)
   bool stall_keeps_state = false;
+  /// a request with this bRequest, after lose_skip of them went through, is lost: no effect,
+  /// the host's transfer times out
+  std::optional<std::uint8_t> lose_request;
+  int lose_skip = 0;
   int unplug_after = -1;     ///< control transfers served before the device vanishes (-1: never)
   bool stuck_busy = false;   ///< a command or block never finishes (dfuDNBUSY forever)
 };
@@ -99,6 +103,10 @@ class DfuRom {
       faults.stall_request.reset();
       if (faults.stall_keeps_state) return detail::kUsbErrorPipe;
       return stall(false);
+    }
+    if (faults.lose_request && *faults.lose_request == request && faults.lose_skip-- == 0) {
+      faults.lose_request.reset();
+      return detail::kUsbErrorTimeout;
     }
     const bool in = (type & 0x80) != 0;
     if ((type & 0x7F) != 0x21 || index != 0) return stall();

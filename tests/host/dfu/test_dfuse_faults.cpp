@@ -90,6 +90,19 @@ TEST_F(DfuFaults, StalledDnloadReportsTheStallAndTheStatusAndIsClearedToDfuIdle)
   EXPECT_TRUE(erased(kBase, image.size()));
 }
 
+TEST_F(DfuFaults, ALostBlockTimesOutAndTheDeviceIsAbortedToDfuIdle) {
+  dfu::DfuseDevice d = open();
+  d.erase_pages(kBase, image.size(), {});
+  rom.faults.lose_request = 1;  // DNLOAD: the first block's SET_ADDRESS_POINTER goes through,
+  rom.faults.lose_skip = 1;     // its data is lost (the device stays in dfuDNLOAD-IDLE)
+  const DfuseError e = error_of([&] { d.download(kBase, image, {}); });
+  EXPECT_EQ(std::string(e.what()),
+            "writing 2048 bytes at 0x08000000 failed: no answer within 5000 ms "
+            "(LIBUSB_ERROR_TIMEOUT). Aborted (ABORT): the device is in dfuIDLE. " + kIncomplete);
+  EXPECT_EQ(e.kind(), Kind::timeout);
+  EXPECT_EQ(rom.state(), DfuState::dfuIDLE);
+}
+
 TEST_F(DfuFaults, StalledUploadSaysNothingWasChanged) {
   dfu::DfuseDevice d = open();
   rom.faults.stall_request = 2;
