@@ -307,7 +307,10 @@ TEST(NakFields, BadPayloadNamesNoFieldAndStreamTooFastNamesDecimation) {
   w.resize(encode_frame(FrameHeader{kProtocolMajor, kProtocolMinor, 0x20, 0, 8, 0}, short_payload,
                         1, w.data(), w.size()));
   b.c_.receive(w.data(), w.size(), b.wd_us_);
-  b.send(StreamConfigure{kAllChannels, 1, 40}, 9);  // 20 kHz > 10 kHz
+  SetParams p;
+  p.control_rate_Hz = 40000;
+  b.send(p, 8);
+  b.send(StreamConfigure{kAllChannels, 1, 40}, 9);  // 40 kHz > 20 kHz
   b.pump();
   const auto naks = b.all<Nak>();
   ASSERT_EQ(naks.size(), 2u);
@@ -316,7 +319,7 @@ TEST(NakFields, BadPayloadNamesNoFieldAndStreamTooFastNamesDecimation) {
   EXPECT_EQ(naks[0].detail, 0);
   EXPECT_EQ(naks[1].error, ErrorCode::stream_too_fast);
   EXPECT_EQ(naks[1].field_index, 1);  // StreamConfigure #1 decimation
-  EXPECT_EQ(naks[1].detail, 10000);   // the device's max_stream_rate_Hz (SPEC.md §9.1)
+  EXPECT_EQ(naks[1].detail, 20000);   // the device's max_stream_rate_Hz (SPEC.md §9.1)
 }
 
 TEST(NakFields, NoProgramSaysWhetherNothingIsLoadedOrTheRateChanged) {

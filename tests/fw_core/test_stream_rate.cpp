@@ -89,16 +89,51 @@ TEST(StreamRate, AVerySlowStreamStaysAtTheSlowestDecimationAcrossARateChangeRath
   EXPECT_EQ(batches.front().period_ns, 65535u * 25000u);  // not 14464 ticks (80000 mod 65536)
 }
 
-TEST(StreamRate, ABoardCannotRaiseTheLimitAboveTenKilohertz) {
+TEST(StreamRate, ABoardCannotRaiseTheLimitAboveTwentyKilohertz) {
   Bench b(Bench::Start::with_session, board_limited_to(50000));
-  b.send(GetDeviceInfo{}, 1);
-  b.send(StreamConfigure{kAllChannels, 1, 40}, 2);  // 20 kHz
+  SetParams p;
+  p.control_rate_Hz = 40000;
+  b.send(p, 1);
+  b.send(GetDeviceInfo{}, 2);
+  b.send(StreamConfigure{kAllChannels, 1, 40}, 3);  // 40 kHz: every tick at 40 kHz
   b.pump();
-  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 10000u);
+  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 20000u);
   const Nak n = b.last<Nak>();
   EXPECT_EQ(n.error, ErrorCode::stream_too_fast);
   EXPECT_EQ(n.field_index, 1);
-  EXPECT_EQ(n.detail, 10000);
+  EXPECT_EQ(n.detail, 20000);
+  b.clear();
+  b.send(StreamConfigure{kAllChannels, 2, 40}, 4);  // every second tick: 20 kHz
+  b.pump();
+  EXPECT_EQ(b.last<StreamConfig>().period_ns, 50000u);
+}
+
+// The core's own limit (Streamer::kMaxRate_Hz) lets a board whose link carries it (USB
+// full-speed bulk: 499 500 bytes/s for all channels, firmware/usb/README.md) stream every tick
+// at the default control rate, with every sample there: indices 0, 1, 2, ... one tick apart.
+TEST(StreamRate, ABoardAtTheDefaultLimitStreamsEveryTickAtTwentyKilohertzWithNoSampleMissing) {
+  Bench b;
+  b.send(GetDeviceInfo{}, 1);
+  b.send(StreamConfigure{kAllChannels, 1, 40}, 2);
+  b.pump();
+  EXPECT_EQ(b.last<DeviceInfo>().max_stream_rate_Hz, 20000u);
+  const StreamConfig c = b.last<StreamConfig>();
+  EXPECT_EQ(c.period_ns, 50000u);
+  EXPECT_EQ(c.wire_bytes_per_s, 499500u);  // SPEC.md §9.6: 999 bytes a batch, 500 batches/s
+  b.clear();
+  b.send(StreamStart{}, 3);
+  b.run_ticks(2000);  // 100 ms
+  b.send(StreamStop{}, 4);
+  b.run_ticks(1);
+  std::uint32_t next = 0;
+  for (const SampleBatch& batch : b.all<SampleBatch>()) {
+    ASSERT_EQ(batch.first_index, next);
+    EXPECT_EQ(batch.period_ns, 50000u);
+    next += batch.sample_count;
+  }
+  EXPECT_GE(next, 2000u);
+  EXPECT_EQ(b.c_.health().stream_samples_lost, 0u);
+  EXPECT_EQ(b.c_.health().isr_queue_overflows, 0u);
 }
 
 TEST(StreamRate, ALowerLimitSetLaterSlowsTheConfiguredStream) {

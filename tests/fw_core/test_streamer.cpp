@@ -61,13 +61,20 @@ TEST(Streamer, TenKilohertzOfAllChannelsIsAcceptedWithItsPeriodAndByteRate) {
   EXPECT_EQ(reply.period_ns, 100000u);
 }
 
-TEST(Streamer, FasterThanTenKilohertzIsRefusedNamingDecimation) {
+TEST(Streamer, FasterThanTwentyKilohertzIsRefusedNamingDecimation) {
   Streamer s;
   proto::StreamConfig reply;
   std::uint8_t field = 255;
-  EXPECT_EQ(s.configure(config(0x0006, 1, 40), 20000, reply, field), ErrorCode::stream_too_fast);
+  EXPECT_EQ(s.configure(config(0x0006, 1, 40), 40000, reply, field), ErrorCode::stream_too_fast);
   EXPECT_EQ(field, 1);
-  EXPECT_EQ(s.configure(config(0x0006, 3, 40), 40000, reply, field), ErrorCode::stream_too_fast);
+  // every tick at 20 kHz and every second tick at 40 kHz are the limit itself
+  EXPECT_EQ(s.configure(config(0x0006, 1, 40), 20000, reply, field), ErrorCode::ok);
+  EXPECT_EQ(s.configure(config(0x0006, 2, 40), 40000, reply, field), ErrorCode::ok);
+  // a board's lower limit is kept, a higher one is not
+  EXPECT_EQ(s.configure(config(0x0006, 1, 40), 20000, reply, field, 10000),
+            ErrorCode::stream_too_fast);
+  EXPECT_EQ(s.configure(config(0x0006, 1, 40), 40000, reply, field, 40000),
+            ErrorCode::stream_too_fast);
 }
 
 TEST(Streamer, ABatchLargerThanOneFrameIsOutOfRangeNamingBatchSamples) {

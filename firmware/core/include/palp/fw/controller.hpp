@@ -133,7 +133,8 @@ class Controller {
   /// it (to the fastest rate allowed) unless it runs.
   void set_identity(const DeviceIdentity& identity);
   const DeviceIdentity& identity() const { return identity_; }
-  /// The stream rate limit in force (DeviceIdentity::max_stream_rate_Hz within 1 ... 10 kHz).
+  /// The stream rate limit in force (DeviceIdentity::max_stream_rate_Hz within 1 ...
+  /// Streamer::kMaxRate_Hz, 20 kHz).
   std::uint32_t max_stream_rate_Hz() const;
   /// The guard receive() holds around every change of the tick's state (see TickGuard). Set it
   /// before the control interrupt starts.

@@ -48,8 +48,12 @@ struct StreamCounters {
 
 class Streamer {
  public:
-  static constexpr std::size_t kBacklogSamples = 1024;  ///< about 100 ms at 10 kHz
-  static constexpr std::uint32_t kMaxRate_Hz = 10000;
+  static constexpr std::size_t kBacklogSamples = 1024;  ///< about 50 ms at 20 kHz
+  /// The fastest stream the core produces: every control tick at the default 20 kHz (all 11
+  /// channels in batches of 40: 499 500 bytes/s, 41 % of what USB full-speed bulk carries,
+  /// firmware/usb/README.md "Throughput"); at a 40 kHz control rate every second tick (every
+  /// tick there would be 999 000 bytes/s, 82 % of bulk's ceiling: no margin on a shared bus).
+  static constexpr std::uint32_t kMaxRate_Hz = 20000;
 
   /// Validates and applies a configuration for a control rate; fills the reply. On refusal
   /// returns the error and the offending field index (Nak.field_index). A sample rate above
