@@ -16,9 +16,10 @@
 // Threads. A device thread is the board's main loop plus its tick timer: each pass moves the
 // bytes Device::read() received into the core, runs the control ticks wall time says are due
 // (at most 10 ms of them a pass; a longer delay, a descheduled thread, is dropped as a board
-// drops ticks it cannot keep up with), hands the core's bytes to Device::write() and pends the
-// USB interrupt. Host calls (any thread) take the same lock for each transaction and wait for
-// the device thread (a condition variable, wall-time deadlines) while the device NAKs.
+// drops ticks it cannot keep up with), hands at most 256 bytes of the core's output to
+// Device::write() as the app's main loop does (so a frame reaches the USB ring in pieces) and
+// pends the USB interrupt. Host calls (any thread) take the same lock for each transaction and
+// wait for the device thread (a condition variable, wall-time deadlines) while the device NAKs.
 //
 // Loss. The board would lose stream samples when the host leaves its buffers full (the core's
 // backlog of 1024 samples, about 50 ms at 20 kHz). The rig keeps up to kBacklogBytes of the
