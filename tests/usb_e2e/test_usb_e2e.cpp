@@ -157,6 +157,35 @@ TEST(UsbE2eUsb, EveryTickStreamedAtTwentyKilohertzWithAllChannelsArrivesWithCont
   EXPECT_EQ(rig->violations(), std::vector<std::string>{});
 }
 
+// At the 40 kHz control rate the core's ceiling is every second tick: the SDK refuses every tick
+// (above DeviceInfo's ceiling) before asking, and 20 kHz arrives whole. (The SDK takes the control
+// rate from DeviceInfo at connect, so the stream is configured by a session opened after the
+// rate change.)
+TEST(UsbE2eUsb, AtAFortyKilohertzControlRateEverySecondTickStreamsAndEveryTickIsRefused) {
+  auto rig = std::make_shared<BoardRig>();
+  {
+    Probe setup(open_usb(rig, "usb://"));
+    Params p = setup.params();
+    p.control_rate_Hz = 40000;
+    setup.set_params(p);
+  }
+  Probe probe(open_usb(rig, "usb://"));
+  ASSERT_EQ(probe.info().control_rate_Hz, 40000.0);
+  try {
+    probe.configure_stream({.rate_Hz = 40000.0, .channels = channel::all, .batch_samples = 40});
+    FAIL() << "every tick at 40 kHz was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "stream rate 40000 Hz is outside (0, 20000] Hz, the device's range");
+  }
+  const std::size_t count = 4000;
+  const Streamed s = stream(probe, {.rate_Hz = 20000.0, .channels = channel::all,
+                                    .batch_samples = 40}, count);
+  expect_continuous(s, count, 50e-6);
+  print_rig(*rig, "usb:// 40 kHz control rate, 20 kHz stream");
+  probe.close();
+  EXPECT_EQ(rig->violations(), std::vector<std::string>{});
+}
+
 // The sequence check above is not vacuous: one bulk IN packet lost on the bus (its 64 bytes
 // never reach the SDK) breaks a frame, which the SDK's frame reader rejects and its index check
 // reports as a transport gap of whole batches.
