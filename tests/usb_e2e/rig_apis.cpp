@@ -6,7 +6,6 @@
 #include <cstring>
 
 #include "palp/protocol/usb.hpp"
-#include "palp/usb/descriptors.hpp"
 
 namespace palp::usb_e2e {
 
