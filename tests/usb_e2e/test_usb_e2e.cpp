@@ -158,9 +158,9 @@ TEST(UsbE2eUsb, EveryTickStreamedAtTwentyKilohertzWithAllChannelsArrivesWithCont
 }
 
 // At the 40 kHz control rate the core's ceiling is every second tick: the SDK refuses every tick
-// (above DeviceInfo's ceiling) before asking, and 20 kHz arrives whole. (The SDK takes the control
-// rate from DeviceInfo at connect, so the stream is configured by a session opened after the
-// rate change.)
+// (above DeviceInfo's ceiling) before asking, and 20 kHz arrives whole. The stream is configured by
+// a session opened after the rate change, so DeviceInfo itself reports 40 kHz (the same session
+// would do too: ProbeConnect.AControlRateSetThroughSetParamsIsTheRateTheStreamDecimationComesFrom).
 TEST(UsbE2eUsb, AtAFortyKilohertzControlRateEverySecondTickStreamsAndEveryTickIsRefused) {
   auto rig = std::make_shared<BoardRig>();
   {

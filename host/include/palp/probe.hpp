@@ -73,7 +73,7 @@ struct DeviceInfo {
   std::uint32_t schema_hash = 0;
   std::uint32_t capabilities = 0;  ///< proto::Capability bits
   double max_current_A = 0;
-  double control_rate_Hz = 0;
+  double control_rate_Hz = 0;     ///< in force: DeviceInfo's at connect, then set_params()'s
   double max_stream_rate_Hz = 0;
   double heartbeat_timeout_s = 0;
   std::size_t max_payload = 0;

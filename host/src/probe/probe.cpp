@@ -141,6 +141,8 @@ void Probe::set_params(const Params& p) {
   const auto in_force = expect<proto::Params>(
       s.request(proto::fields_as<proto::SetParams>(p), s.default_timeout()), "SetParams");
   s.set_heartbeat_timeout_ms(in_force.heartbeat_timeout_ms);
+  // the rate in force from now on: configure_stream() derives the decimation from it
+  impl_->info.control_rate_Hz = in_force.control_rate_Hz;
 }
 
 Calibration Probe::calibration() {

@@ -123,6 +123,23 @@ TEST(ProbeConnect, StatusParamsAndCalibrationRoundTripInSiUnits) {
   EXPECT_FLOAT_EQ(probe.calibration().pressure_offset_Pa[2], 12.5f);
 }
 
+// A control-rate change through set_params() is the rate configure_stream() divides from: at
+// 40 kHz a 20 kHz stream is every second tick (with the connect-time 20 kHz it was asked as every
+// tick, i.e. 40 kHz, and refused stream_too_fast).
+TEST(ProbeConnect, AControlRateSetThroughSetParamsIsTheRateTheStreamDecimationComesFrom) {
+  SimProcess sim({}, false);
+  ASSERT_TRUE(sim.ok());
+  palp::Probe probe(sim.uri());
+  ASSERT_EQ(probe.info().control_rate_Hz, 20000.0);
+  palp::Params p = probe.params();
+  p.control_rate_Hz = 40000;
+  probe.set_params(p);
+  EXPECT_EQ(probe.info().control_rate_Hz, 40000.0);
+  const palp::StreamInfo info = probe.configure_stream({.rate_Hz = 20000.0});
+  EXPECT_DOUBLE_EQ(info.rate_Hz, 20000.0);
+  EXPECT_DOUBLE_EQ(info.period_s, 50e-6);
+}
+
 TEST(ProbeConnect, AHoldProgramRunsToItsEndAndAShortWaitTimesOutWithHealth) {
   SimProcess sim({}, false);
   ASSERT_TRUE(sim.ok());
