@@ -25,7 +25,7 @@
 #include "console.hpp"
 #include "palp/fw/controller.hpp"
 #include "palp/protocol/stream.hpp"
-#include "systick.hpp"
+#include "instruction_count.hpp"
 
 namespace {
 
@@ -51,25 +51,8 @@ void send(const M& m, std::uint16_t seq, std::uint64_t wd_us) {
   controller.receive(wire, n, wd_us);
 }
 
-// Keeps the compiler from moving memory accesses across this point, and v's computation after it
-// (code that touches no volatile may otherwise move across the SysTick reads).
-template <class T>
-void barrier(const T& v) {
-  asm volatile("" : : "r"(&v) : "memory");
-}
-
-// the cost of one now()/now() pair, subtracted from every reading
-std::uint32_t overhead = 0;
-template <class F>
-std::uint32_t instructions_of(F&& f) {
-  const std::uint32_t a = board::systick::now();
-  barrier(a);
-  f();
-  barrier(a);
-  const std::uint32_t b = board::systick::now();
-  const std::uint32_t t = board::systick::elapsed(a, b);
-  return (t > overhead ? t - overhead : 0) * board::systick::kInstructionsPerCount;
-}
+using cost::barrier;
+using cost::instructions_of;
 
 // cycles of `instr` instructions at the assumed CPI, as tenths of a percent of a tick at rate_Hz
 std::uint32_t permille_of_tick(std::uint64_t instr, std::uint32_t rate_Hz) {
@@ -258,12 +241,7 @@ void breakdown() {
 }  // namespace
 
 int main() {
-  board::systick::start();
-  {
-    const std::uint32_t a = board::systick::now();
-    const std::uint32_t b = board::systick::now();
-    overhead = board::systick::elapsed(a, b);
-  }
+  cost::start_counting();
   std::uint64_t wd_us = 1'000'000;
   std::uint16_t seq = 0;
   send(proto::Hello{proto::kProtocolMajor, proto::kProtocolMinor, proto::kSchemaHash, "tick-cost"},

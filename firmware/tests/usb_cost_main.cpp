@@ -27,7 +27,7 @@
 #include "palp/protocol/stream.hpp"
 #include "palp/protocol/usb.hpp"
 #include "palp/usb/device.hpp"
-#include "systick.hpp"
+#include "instruction_count.hpp"
 
 namespace {
 
@@ -103,21 +103,8 @@ class StubHardware {
 StubHardware hw;
 usb::Device<StubHardware> device{hw};
 
-template <class T>
-void barrier(const T& v) {
-  asm volatile("" : : "r"(&v) : "memory");
-}
-std::uint32_t overhead = 0;  // the cost of one now()/now() pair, in counts
-template <class F>
-std::uint32_t instructions_of(F&& f) {
-  const std::uint32_t a = board::systick::now();
-  barrier(a);
-  f();
-  barrier(a);
-  const std::uint32_t b = board::systick::now();
-  const std::uint32_t t = board::systick::elapsed(a, b);
-  return (t > overhead ? t - overhead : 0) * board::systick::kInstructionsPerCount;
-}
+using cost::barrier;
+using cost::instructions_of;
 
 // A control request without data stage, answered: SETUP, then the host takes the status ZLP.
 void control(std::uint8_t type, std::uint8_t request, std::uint8_t value) {
@@ -131,13 +118,7 @@ void control(std::uint8_t type, std::uint8_t request, std::uint8_t value) {
 }  // namespace
 
 int main() {
-  board::systick::start();
-  {
-    const std::uint32_t a = board::systick::now();
-    barrier(a);
-    const std::uint32_t b = board::systick::now();
-    overhead = board::systick::elapsed(a, b);
-  }
+  cost::start_counting();
   console << "usb device core on cortex-m4 (qemu -icount shift=0, 1 SysTick count = 40 "
              "instructions), stub hardware copying bytes:\n";
 
