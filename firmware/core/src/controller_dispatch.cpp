@@ -217,7 +217,7 @@ void Controller::dispatch(const proto::FrameHeader& h, const M& m, std::uint64_t
     } else if constexpr (std::is_same_v<M, GetDeviceInfo>) {
       reply(h, device_info());
     } else if constexpr (std::is_same_v<M, EnterBootloader>) {
-      if (m.magic != 0x544F4F42u)
+      if (m.magic != kBootloaderMagic)
         return nak(h, ErrorCode::bad_magic, field_index_of<&EnterBootloader::magic>());
       if (programs_.running()) return nak(h, ErrorCode::busy, 255, busy_detail());
       bootloader_requested_ = true;

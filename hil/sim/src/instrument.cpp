@@ -9,7 +9,7 @@ namespace palp::sim {
 
 Instrument::Instrument(InstrumentOptions options)
     : o_(std::move(options)), phantom_(o_.phantom), seed_(o_.seed) {
-  identity_.board = "palp-sim";
+  identity_.board = o_.board.c_str();
   identity_.serial = o_.serial.c_str();
   identity_.git_hash = o_.git_hash.c_str();
   identity_.capabilities = (1u << static_cast<unsigned>(proto::Capability::pressure)) |
@@ -91,8 +91,9 @@ std::string Instrument::status(Serving& serving) {
                 static_cast<unsigned long long>(c.holds));
   std::string line = buf;
   // what a host-loss test measures: the coil's true current and the latched fault
-  std::snprintf(buf, sizeof buf, " coil_A=%.6f fault=%s", model().coil_current_A(),
-                proto::enum_name(sim_->controller().fault()));
+  std::snprintf(buf, sizeof buf, " coil_A=%.6f fault=%s bootloader_requested=%d",
+                model().coil_current_A(), proto::enum_name(sim_->controller().fault()),
+                sim_->controller().bootloader_requested() ? 1 : 0);
   line += buf;
   line += serving.status_fields();
   line += " sensor_faults=" + faults_.describe();

@@ -36,6 +36,7 @@ struct Options {
   double hold_timeout_ms = 1000.0;
   double reaction_latency_ms = 2.0;
   std::string serial = "SIM-0001";
+  std::string board = "palp-sim";
   int robot_port = -1;  // -1: the robot bridge is off
   std::vector<double> probe_tcp_mm{0.0, 0.0, 200.0};
   std::vector<double> phantom_frame_mm{600.0, 0.0, 300.0};
@@ -60,6 +61,7 @@ sim::InstrumentOptions instrument_options(const Options& o) {
   i.hold_timeout_ms = o.hold_timeout_ms;
   i.reaction_latency_ms = o.reaction_latency_ms;
   i.serial = o.serial;
+  i.board = o.board;
   i.git_hash = PALP_GIT_HASH;
   i.robot = o.robot_port >= 0;
   sim::RobotWorldOptions& w = i.world;
@@ -108,6 +110,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--serial", o.serial, "serial number the device reports")->capture_default_str();
+  app.add_option("--board", o.board,
+                 "board name the device reports (DeviceInfo.board; e.g. stm32g474 to try `palpctl "
+                 "flash` up to the bootloader)")
+      ->capture_default_str();
   app.add_option("--robot-port", o.robot_port,
                  "serve the KUKA robot bridge (Modbus TCP) on this port (0: a free one); "
                  "without it the robot is off and --mount-mm places the probe")

@@ -202,6 +202,13 @@ class Probe {
   FaultInfo fault();
   void clear_fault();
 
+  /// Sends EnterBootloader with its magic (SPEC.md §6.2) and waits for its Ack: the controller
+  /// then reboots into its ROM bootloader (the STM32 enumerates as the DFU device 0483:df11,
+  /// palp/flash.hpp). Afterwards this Probe is closed as by close() but without make_safe(): the
+  /// device has left. The device refuses it with DeviceError busy while a program runs (call
+  /// make_safe() first). Sent once: a lost Ack is a TimeoutError (the device may have left).
+  void enter_bootloader();
+
   // --- streaming --------------------------------------------------------------------------
   /// Configures the stream. Throws ConfigError, before anything is sent, when the rate does not
   /// divide the control rate or exceeds the device's maximum, or when the stream's byte rate

@@ -36,6 +36,7 @@ struct InprocSimulator::Core final : Serving {
     i.hold_timeout_ms = o.hold_timeout_ms;
     i.reaction_latency_ms = o.reaction_latency_ms;
     i.serial = o.serial;
+    i.board = o.board;
     i.git_hash = "inproc";
     i.robot = o.robot;
     i.world.bridge.seed = o.seed;
@@ -216,9 +217,11 @@ InprocOptions InprocOptions::from_uri(const Uri& uri) {
       (key == "hold_timeout_ms" ? o.hold_timeout_ms : o.reaction_latency_ms) = v;
     } else if (key == "serial") {
       o.serial = value;
+    } else if (key == "board") {
+      o.board = value;
     } else {
       throw ConfigError("transport URI '" + uri.text + "': unknown parameter '" + key +
-                        "' (known: seed, mount_mm, hold_timeout_ms, reaction_latency_ms, serial)");
+                        "' (known: seed, mount_mm, hold_timeout_ms, reaction_latency_ms, serial, board)");
     }
   }
   return o;

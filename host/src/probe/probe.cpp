@@ -250,6 +250,14 @@ void Probe::clear_fault() {
   expect<proto::Ack>(s.request(proto::FaultClear{}, s.default_timeout()), "FaultClear");
 }
 
+void Probe::enter_bootloader() {
+  Session& s = impl_->s();
+  expect<proto::Ack>(s.request(proto::EnterBootloader{proto::kBootloaderMagic}, s.default_timeout()),
+                     "EnterBootloader");
+  s.shutdown();  // the device is on its way into the ROM bootloader: nothing more to say to it
+  impl_->session.reset();
+}
+
 // ---- streaming -------------------------------------------------------------------------------
 
 StreamInfo Probe::configure_stream(const StreamSettings& st) {

@@ -187,7 +187,7 @@ std::string config_error(const std::string& uri) {
 TEST(SimInproc, BadUriParametersAndPhantomsAreConfigErrorsNamingThem) {
   EXPECT_EQ(config_error("sim+inproc://none?speed=2"),
             "transport URI 'sim+inproc://none?speed=2': unknown parameter 'speed' (known: seed, "
-            "mount_mm, hold_timeout_ms, reaction_latency_ms, serial)");
+            "mount_mm, hold_timeout_ms, reaction_latency_ms, serial, board)");
   EXPECT_EQ(config_error("sim+inproc://none?mount_mm=1,2"),
             "transport URI 'sim+inproc://none?mount_mm=1,2': mount_mm '1,2' is not x,y,z in mm");
   EXPECT_EQ(config_error("sim+inproc://none?seed=-1"),

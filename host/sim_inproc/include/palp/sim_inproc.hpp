@@ -8,7 +8,7 @@
 //
 // Link the palp_sim_inproc library (it links hil/sim; the SDK's palp_device does not). Linking
 // it also makes open_transport() accept sim+inproc://PHANTOM[?key=value&...] with the keys
-// seed, mount_mm (x,y,z), hold_timeout_ms, reaction_latency_ms and serial (InprocOptions); each
+// seed, mount_mm (x,y,z), hold_timeout_ms, reaction_latency_ms, serial and board (InprocOptions); each
 // such URI opens a simulator of its own.
 //
 // Time model. Virtual time advances only inside the transport's read(): read() hands the bytes
@@ -53,6 +53,7 @@ struct InprocOptions {
   double hold_timeout_ms = 1000.0;          ///< wall time a contact event waits for the host
   double reaction_latency_ms = 2.0;         ///< virtual time from an event to the reaction
   std::string serial = "SIM-0001";          ///< the serial number the device reports
+  std::string board = "palp-sim";           ///< the board name the device reports (DeviceInfo.board)
   bool robot = false;  ///< the robot bridge emulator with palp-sim's default frames (robot_uri())
   /// With robot: virtual time from the probe's contact-output line to the bridge's digital
   /// input 1 (palp-sim's --robot-input-latency-ms; at least one tick)

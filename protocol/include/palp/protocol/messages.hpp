@@ -19,6 +19,9 @@ namespace palp::proto {
 
 inline constexpr u8 kProtocolMajor = PALP_PROTOCOL_MAJOR;
 inline constexpr u8 kProtocolMinor = PALP_PROTOCOL_MINOR;
+/// EnterBootloader.magic: the bytes 42 4f 4f 54, 'BOOT' little-endian (SPEC.md §6.2); any other
+/// value is refused with bad_magic.
+inline constexpr u32 kBootloaderMagic = 0x544F4F42u;
 
 /// "No limit" marker of the catalogue's lo/hi columns.
 struct NoLimit {};

@@ -31,6 +31,7 @@ struct InstrumentOptions {
   double reaction_latency_ms = 2.0;            ///< virtual time from an event to the reaction
   std::string serial = "SIM-0001";             ///< the serial number the device reports
   std::string git_hash = "unknown";            ///< DeviceInfo.git_hash
+  std::string board = "palp-sim";              ///< DeviceInfo.board (a test of `palpctl flash` poses as a board)
   bool robot = false;                          ///< the arm carries the probe (and mount_mm is unused)
   RobotWorldOptions world{};                   ///< with robot: frames, start pose, bridge
 };
