@@ -18,6 +18,8 @@
 //   ├── RobotRejectedError       the robot bridge refused a command (its result code; for a bad
 //   │                            parameter the register's address and name)
 //   ├── RobotFaultError          the robot faulted or was safety-stopped during a motion
+//   ├── FlashError               a firmware update failed after the device left its
+//   │                            application (names the device's state and how to recover)
 //   └── RobotLinkError           (a ConnectionError) the robot bridge is unreachable or its
 //                                heartbeat stopped
 #pragma once
@@ -140,6 +142,16 @@ class RobotFaultError : public Error {
 
  private:
   std::uint16_t result_;
+};
+
+class FlashError : public Error {
+ public:
+  /// erased: the flash was erased (in part): the device waits in its ROM bootloader for an image.
+  FlashError(const std::string& message, bool erased) : Error(message), erased_(erased) {}
+  bool erased() const { return erased_; }
+
+ private:
+  bool erased_;
 };
 
 class RobotLinkError : public ConnectionError {

@@ -37,7 +37,9 @@ T expect(detail::Reply&& r, const char* request) {
                       " with another message than the protocol says");
 }
 
-DeviceInfo to_info(const proto::DeviceInfo& d) {
+}  // namespace
+
+DeviceInfo detail::device_info_from(const proto::DeviceInfo& d) {
   auto text = [](const auto& s) { return std::string(s.bytes.data(), s.length()); };
   DeviceInfo i;
   i.serial = text(d.serial);
@@ -57,11 +59,9 @@ DeviceInfo to_info(const proto::DeviceInfo& d) {
   return i;
 }
 
-}  // namespace
-
 Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->session = std::make_unique<Session>(uri, options);
-  impl_->info = to_info(impl_->session->device_info());
+  impl_->info = detail::device_info_from(impl_->session->device_info());
   impl_->handshake = impl_->session->handshake();
   impl_->uri = uri;
   stop_stale_stream();
@@ -70,7 +70,7 @@ Probe::Probe(const std::string& uri, ConnectOptions options) : impl_(std::make_u
 Probe::Probe(std::unique_ptr<Transport> transport, ConnectOptions options)
     : impl_(std::make_unique<Impl>()) {
   impl_->session = std::make_unique<Session>(std::move(transport), options);
-  impl_->info = to_info(impl_->session->device_info());
+  impl_->info = detail::device_info_from(impl_->session->device_info());
   impl_->handshake = impl_->session->handshake();
   impl_->uri = impl_->session->uri();
   stop_stale_stream();

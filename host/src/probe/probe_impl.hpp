@@ -9,6 +9,11 @@
 
 namespace palp {
 
+namespace detail {
+/// The public DeviceInfo of the protocol's message.
+DeviceInfo device_info_from(const proto::DeviceInfo& d);
+}  // namespace detail
+
 struct Probe::Impl {
   std::unique_ptr<detail::Session> session;
   DeviceInfo info;  // kept, with the handshake and the URI, so they outlive close()

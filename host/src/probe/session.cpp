@@ -5,6 +5,7 @@
 
 #include "palp/protocol/handshake.hpp"
 #include "palp/protocol/verdict_text.hpp"
+#include "probe/exchange.hpp"
 
 namespace palp::detail {
 
@@ -26,8 +27,7 @@ std::string enum_text(E value) {
   return n ? n : "#" + std::to_string(static_cast<unsigned>(value));
 }
 
-/// Sends Hello (after a 0x00 that ends any partial frame the device holds) and reads until the
-/// DeviceInfo reply comes; other frames (a stream still running from before) are skipped.
+/// Sends Hello and reads until the DeviceInfo reply comes (exchange.hpp).
 proto::DeviceInfo hello(Transport& t, const std::string& host_software, std::uint16_t seq,
                         std::chrono::milliseconds timeout) {
   proto::Hello h;
@@ -35,29 +35,11 @@ proto::DeviceInfo hello(Transport& t, const std::string& host_software, std::uin
   h.host_minor = proto::kProtocolMinor;
   h.host_schema_hash = proto::kSchemaHash;
   h.host_software.assign(host_software.c_str());
-  std::array<std::uint8_t, proto::kMaxWireFrame + 1> wire{};
-  const std::size_t n = proto::encode_message(h, seq, 0, wire.data() + 1, wire.size() - 1);
-  t.write(std::span<const std::uint8_t>(wire.data(), n + 1), timeout);
-  proto::FrameReader reader;
-  std::optional<proto::DeviceInfo> info;
-  const auto deadline = Clock::now() + timeout;
-  std::array<std::uint8_t, 4096> buf;
-  while (!info && Clock::now() < deadline) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    const std::size_t got = t.read(buf, std::max(left, std::chrono::milliseconds(1)));
-    reader.feed_messages(
-        buf.data(), got,
-        [&](const proto::FrameHeader& fh, const auto& m) {
-          if constexpr (std::is_same_v<std::decay_t<decltype(m)>, proto::DeviceInfo>)
-            if ((fh.flags & proto::kFlagResponse) && fh.seq == seq) info = m;
-        },
-        [](proto::Reject) {});
-  }
-  if (!info)
-    throw TimeoutError("the DeviceInfo reply to Hello from " + t.uri() +
-                           " (is it a palp controller, and is its firmware running?)",
-                       static_cast<double>(timeout.count()) / 1000.0, std::nullopt);
-  return *info;
+  const auto r = exchange<proto::DeviceInfo>(
+      t, h, seq, timeout, "the DeviceInfo reply to Hello",
+      "(is it a palp controller, and is its firmware running?)");
+  if (const auto* info = std::get_if<proto::DeviceInfo>(&r)) return *info;
+  throw ProtocolError("the device answered Hello with a Nak from " + t.uri());
 }
 
 Handshake judge_or_throw(const proto::DeviceInfo& d) {

@@ -35,4 +35,22 @@ constexpr std::uint32_t board_image_address(BoardId board) {
   return 0;
 }
 
+/// A range of flash addresses, [begin, end); empty when begin == end.
+struct FlashRange {
+  std::uint32_t begin = 0, end = 0;
+};
+
+/// The flash the board keeps for its calibration journal: a firmware update must never erase it
+/// (palp/flash.hpp). stm32g474: bank 2's last two pages, 0x0807F000..0x08080000
+/// (firmware/board/stm32g474/flash_driver.hpp: kStorageBase, kStorageEnd; tests/stm32 checks
+/// both agree). Empty for a board without one.
+constexpr FlashRange board_calibration_flash(BoardId board) {
+  switch (board) {
+    case BoardId::stm32g474: return {0x0807F000u, 0x08080000u};
+    case BoardId::qemu_mps2_an386:
+    case BoardId::unknown: break;
+  }
+  return {};
+}
+
 }  // namespace palp::proto
