@@ -1,6 +1,7 @@
 // palpctl flash IMAGE: a firmware update through palp::flash::update (palp/flash.hpp), with its
 // steps and the DFU progress on stderr, --dry-run's plan on stdout, Ctrl-C honoured up to the
 // erase.
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,6 +19,7 @@ struct FlashArgs {
   bool dry_run = false, device_in_dfu = false, mass_erase = false;
   std::string calibration_file, dfu_serial;
   double dfu_wait_s = 10, reconnect_s = 15;
+  bool uri_given = false;  ///< --uri or $PALP_URI; else flash talks to usb://
 };
 
 std::chrono::milliseconds ms(double s) {
@@ -27,7 +29,7 @@ std::chrono::milliseconds ms(double s) {
 int flash(const Context& ctx, const FlashArgs& a) {
   const auto image = palp::flash::read_image(a.image);
   palp::flash::FlashOptions o;
-  o.uri = ctx.uri;
+  o.uri = a.uri_given ? ctx.uri : "usb://";
   o.device_in_dfu = a.device_in_dfu;
   o.mass_erase = a.mass_erase;
   o.dry_run = a.dry_run;
@@ -91,7 +93,8 @@ void add_flash_command(CLI::App& app, Context& ctx) {
       "(EnterBootloader), erase only the image's pages, download, verify by read-back, start the "
       "new firmware, check its version and that the calibration is unchanged (written back if "
       "not). A device already in DFU mode is flashed too. Ctrl-C stops it cleanly up to the "
-      "erase; a failure after the erase says how to recover (firmware/README.md, \"Flashing\")");
+      "erase; a failure after the erase says how to recover (firmware/README.md, \"Flashing\"). "
+      "The controller is --uri's, usb:// when neither --uri nor $PALP_URI is given");
   cmd->add_option("IMAGE", a->image, "The firmware image: .bin, .elf or .dfu (told by content)")
       ->required();
   cmd->add_flag("--dry-run", a->dry_run,
@@ -118,7 +121,11 @@ void add_flash_command(CLI::App& app, Context& ctx) {
                   "Wait this long for the controller to answer after the new firmware starts, s")
       ->check(CLI::Range(0.1, 300.0))
       ->capture_default_str();
-  cmd->callback([&ctx, a] { ctx.action = [&ctx, a] { return flash(ctx, *a); }; });
+  const CLI::Option* uri = app.get_option("--uri");
+  cmd->callback([&ctx, a, uri] {
+    a->uri_given = uri->count() > 0 || std::getenv("PALP_URI") != nullptr;
+    ctx.action = [&ctx, a] { return flash(ctx, *a); };
+  });
 }
 
 }  // namespace palpctl
