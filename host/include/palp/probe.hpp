@@ -26,7 +26,7 @@
 // the same seq when its reply does not come, at every quarter of its timeout; the first reply
 // answers it (health().requests_resent counts the copies). start_stream() asks the status
 // whether a StreamStart whose Ack was lost was taken. Any other request's lost reply (start(),
-// clear_fault(), commit_calibration()) is a TimeoutError: the protocol has no rule that a device
+// clear_fault(), commit_calibration(), enter_bootloader()) is a TimeoutError: the protocol has no rule that a device
 // recognises a repeated seq, and a second execution of these differs from the first.
 //
 // Connecting: a stream a previous host left running is stopped (it would refuse this host's
