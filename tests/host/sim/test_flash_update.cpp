@@ -14,6 +14,7 @@
 #include "../unit/firmware_image.hpp"
 #include "palp/error.hpp"
 #include "palp/flash.hpp"
+#include "palp/protocol/frame.hpp"
 #include "palp/sim_inproc.hpp"
 
 namespace palp::flash {
@@ -193,6 +194,91 @@ TEST_F(FlashUpdate, MassEraseOnlyWhenAskedAndTheCalibrationIsWrittenBackAfterIt)
   EXPECT_TRUE(rom_.erased_pages.empty());
   EXPECT_TRUE(r.calibration_restored);
   EXPECT_EQ(device_calibration().current_offset_A, 0.0125f);
+}
+
+/// A controller whose firmware speaks another protocol major: it answers only the frozen
+/// requests (GetDeviceInfo, EnterBootloader), in frames of its own major, and records every
+/// message it got (in a record that outlives it: the update owns and closes the transport).
+struct DeviceRecord {
+  std::vector<std::string> got;
+  bool entered = false;
+};
+class OtherMajorDevice final : public Transport {
+ public:
+  explicit OtherMajorDevice(std::shared_ptr<DeviceRecord> record) : rec_(std::move(record)) {}
+  static constexpr proto::u8 kMajor = proto::kProtocolMajor + 1;
+
+  void write(std::span<const std::uint8_t> bytes, std::chrono::milliseconds) override {
+    reader_.feed_messages(
+        bytes.data(), bytes.size(),
+        [&](const proto::FrameHeader& h, const auto& m) {
+          using M = std::decay_t<decltype(m)>;
+          rec_->got.push_back(M::kName);
+          if constexpr (std::is_same_v<M, proto::GetDeviceInfo>) {
+            proto::DeviceInfo d{};
+            d.protocol_major = kMajor;
+            d.protocol_minor = 0;
+            d.schema_hash = 0x11111111u;
+            d.fw_major = 9;
+            d.serial.assign("OLD-7");
+            d.board.assign("stm32g474");
+            d.git_hash.assign("0ld0ld0");
+            d.state = proto::DeviceState::incompatible;
+            reply(d, h.seq);
+          } else if constexpr (std::is_same_v<M, proto::EnterBootloader>) {
+            if (m.magic == proto::kBootloaderMagic) rec_->entered = true;
+            reply(proto::Ack{static_cast<proto::u8>(proto::MessageId::EnterBootloader)}, h.seq);
+          }
+        },
+        [](proto::Reject) {});
+  }
+  std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds) override {
+    const std::size_t n = std::min(buf.size(), out_.size());
+    std::copy_n(out_.begin(), n, buf.begin());
+    out_.erase(out_.begin(), out_.begin() + static_cast<std::ptrdiff_t>(n));
+    return n;
+  }
+  std::uint32_t max_device_bytes_per_s() const override { return 1u << 20; }
+  const std::string& uri() const override { return uri_; }
+
+ private:
+  template <class M>
+  void reply(const M& m, std::uint16_t seq) {
+    std::vector<std::uint8_t> w(proto::kMaxWireFrame);
+    w.resize(proto::encode_message(m, seq, proto::kFlagResponse, w.data(), w.size(), kMajor));
+    out_.insert(out_.end(), w.begin(), w.end());
+  }
+  std::shared_ptr<DeviceRecord> rec_;
+  proto::FrameReader reader_;
+  std::vector<std::uint8_t> out_;
+  std::string uri_ = "usb://OLD-7";
+};
+
+TEST_F(FlashUpdate, ADeviceOfAnotherProtocolMajorIsReflashedThroughTheFrozenRequestsAlone) {
+  auto old = std::make_shared<DeviceRecord>();
+  std::unique_ptr<Transport> old_link = std::make_unique<OtherMajorDevice>(old);
+  FlashHooks h = hooks();
+  h.open = [&](const std::string&, std::chrono::milliseconds) -> std::unique_ptr<Transport> {
+    if (old_link) return std::move(old_link);  // the controller before the update
+    if (!rom_.reset) throw ConnectionError("the controller is in its bootloader");
+    return sim_.transport();  // the new firmware: palp-sim's, this build's protocol
+  };
+  const FlashReport r = update(read_image(image_path_), options(), h);
+  EXPECT_EQ(old->got, (std::vector<std::string>{"GetDeviceInfo", "EnterBootloader"}))
+      << "no Hello, no session: only frozen requests";
+  EXPECT_TRUE(old->entered);
+  ASSERT_TRUE(r.before);
+  EXPECT_EQ(r.before->firmware_version, "9.0.0");
+  EXPECT_EQ(rom_.erased_pages.size(), 3u);
+  EXPECT_TRUE(calibration_pages_untouched());
+  EXPECT_EQ(r.after->firmware_version, "0.1.0");
+  EXPECT_TRUE(r.calibration_file.empty());
+  EXPECT_NE(std::find(said_.begin(), said_.end(),
+                      "calibration: cannot be read: the device speaks protocol " +
+                          std::to_string(OtherMajorDevice::kMajor) +
+                          ".0, which this SDK cannot talk to; the calibration's pages "
+                          "0x0807f000..0x08080000 are kept"),
+            said_.end());
 }
 
 }  // namespace
