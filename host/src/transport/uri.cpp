@@ -99,7 +99,9 @@ Uri parse_uri(const std::string& text) {
     u.scheme = Uri::Scheme::sim_inproc;
     const std::size_t q = rest.find('?');
     u.phantom = rest.substr(0, q);
-    if (u.phantom.empty()) bad(text, "sim+inproc:// needs a phantom name (or none)");
+    if (u.phantom.empty())
+      bad(text, "sim+inproc:// needs a phantom name: sim+inproc://none for free air, or one "
+                "palp-sim --help lists");
     if (q != std::string::npos)
       for_each_parameter(text, std::string_view(rest).substr(q + 1),
                          [&](std::string_view key, std::string_view value) {

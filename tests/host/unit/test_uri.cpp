@@ -110,7 +110,9 @@ TEST(Uri, MalformedUrisNameTheProblem) {
   EXPECT_THAT(uri_error_of("usb://A?vid=zz"), HasSubstr("vid 'zz' is not a number"));
   EXPECT_THAT(uri_error_of("usb://A?speed=1"), HasSubstr("unknown parameter 'speed'"));
   EXPECT_THAT(uri_error_of("usb://A?vid"), HasSubstr("parameter 'vid' has no value"));
-  EXPECT_THAT(uri_error_of("sim+inproc://"), HasSubstr("sim+inproc:// needs a phantom name (or none)"));
+  EXPECT_THAT(uri_error_of("sim+inproc://"),
+              HasSubstr("sim+inproc:// needs a phantom name: sim+inproc://none for free air, or "
+                        "one palp-sim --help lists"));
   EXPECT_THAT(uri_error_of("sim+inproc://none?seed"), HasSubstr("parameter 'seed' has no value"));
 }
 
