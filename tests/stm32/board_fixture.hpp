@@ -136,6 +136,18 @@ static_assert(app::Board<Board>, "the register-file board satisfies the app's Bo
 inline constexpr std::uint32_t kPressureAddress = 0x2000'5000;
 inline constexpr std::uint32_t kRequestAddress = 0x2000'6000;
 
+/// The platform every board test builds on: the pressure DMA buffer `pressure` at
+/// kPressureAddress, the bootloader request word at kRequestAddress.
+inline BoardPlatform test_platform(std::array<std::uint16_t, 6>& pressure,
+                                   const char* git_hash = nullptr) {
+  BoardPlatform p;
+  p.pressure_codes = pressure.data();
+  p.pressure_codes_address = kPressureAddress;
+  p.bootloader_request_address = kRequestAddress;
+  if (git_hash != nullptr) p.git_hash = git_hash;
+  return p;
+}
+
 /// A board after init(), with a tick handler that runs the app's part: read_inputs, then
 /// apply_outputs with `outputs`, recording the inputs of every tick.
 class BoardTest : public ::testing::Test {
@@ -146,14 +158,7 @@ class BoardTest : public ::testing::Test {
     board.init();
   }
 
-  BoardPlatform platform() {
-    BoardPlatform p;
-    p.pressure_codes = pressure.data();
-    p.pressure_codes_address = kPressureAddress;
-    p.bootloader_request_address = kRequestAddress;
-    p.git_hash = "abc1234";
-    return p;
-  }
+  BoardPlatform platform() { return test_platform(pressure, "abc1234"); }
 
   static void on_tick(void* self) {
     auto& t = *static_cast<BoardTest*>(self);

@@ -68,13 +68,7 @@ class StmBoardUsb : public ::testing::Test {
     board.init();
   }
 
-  BoardPlatform platform() {
-    BoardPlatform p;
-    p.pressure_codes = pressure.data();
-    p.pressure_codes_address = kPressureAddress;
-    p.bootloader_request_address = kRequestAddress;
-    return p;
-  }
+  BoardPlatform platform() { return test_platform(pressure); }
 
   /// Reset, address 5, configuration 1: what a host does before it opens the vendor interface.
   void enumerate() {
