@@ -6,16 +6,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "common.hpp"
+#include "export_hdf5.hpp"
 #include "palp/indent.hpp"
 #include "palp/result.hpp"
 #include "palp/analysis/indentation.hpp"
 #include "palp/analysis/pressure.hpp"
 #include "palp/error.hpp"
+#ifdef PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "palp/recording.hpp"
 
 namespace palpctl {
@@ -76,8 +81,18 @@ struct Loaded {
 
 Loaded load(const std::string& file, const an::IndentationParams& p) {
   Loaded l;
-  l.rec = palp::read_recording(file);
-  l.lines = palp::recording_row_lines(file);
+#ifdef PALP_HAVE_HDF5
+  if (palp::is_hdf5_file(file)) {
+    l.rec = palp::read_recording_hdf5(file);  // no text lines: problems name the file alone
+  } else
+#endif
+  {
+    if (std::filesystem::path(file).extension() == ".h5" && !hdf5_available())
+      throw palp::ConfigError(file + ": this palpctl was built without HDF5 and reads no .h5 (install "
+                                     "libhdf5-dev, scripts/install-deps, and build again)");
+    l.rec = palp::read_recording(file);
+    l.lines = palp::recording_row_lines(file);
+  }
   l.curve = palp::curve_of(l.rec);  // with i_cmd_A when recorded: the staircase's plateaus
   // no contact: name the line with the highest current
   Eigen::Index top = 0;
@@ -278,7 +293,7 @@ int analyze_boyle(const Context& ctx, const BoyleCli& o, bool from_file) {
 }
 
 void add_indentation_options(CLI::App* cmd, AnalyzeCli& o) {
-  cmd->add_option("--input", o.input, "The recording (run.csv; its sidecar is read when present)")
+  cmd->add_option("--input", o.input, "The recording (run.csv; its sidecar is read when present; or run.h5, docs/hdf5-format.md)")
       ->required();
   cmd->add_option("--kf-N-per-A", o.kf_N_per_A, "Force constant K_f, N/A")
       ->check(kPositive)->capture_default_str();

@@ -16,6 +16,9 @@
 #include "cli_process.hpp"
 #include "palp/analysis/contact_models.hpp"
 #include "palp/recording.hpp"
+#ifdef PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "test_analysis_synth.hpp"
 
 namespace palpctl::test {
@@ -138,6 +141,28 @@ TEST_F(AnalyzeDir, IndentationJsonHasExactlyTheSdkSummarysKeys) {
   EXPECT_EQ(p["input"], csv);
   EXPECT_EQ(p["kf_table"], false);
 }
+
+#ifdef PALP_HAVE_HDF5
+TEST_F(AnalyzeDir, AnH5RecordingAnalysesToExactlyTheCsvsNumbers) {
+  const auto csv = write("hertz", [](double d) { return an::hertz_force_N(d, 2.0e6, kR); }, 3.0, 3,
+                         0.002, {10, 20, 30, 40, 50, 60});
+  const std::string h5 = (dir_ / "hertz.h5").string();
+  palp::write_recording_hdf5(h5, palp::read_recording(csv));
+  for (const char* what : {"indentation", "pressure"}) {
+    const auto a = palpctl({"analyze", what, "--input", csv, "--json"});
+    const auto b = palpctl({"analyze", what, "--input", h5, "--json"});
+    ASSERT_EQ(a.code, 0) << a.err;
+    ASSERT_EQ(b.code, 0) << b.err;
+    json ja = parse(a), jb = parse(b);
+    for (json* j : {&ja, &jb}) {  // the input's name is the one difference
+      j->erase("input");
+      if (j->contains("params")) (*j)["params"].erase("input");
+    }
+    EXPECT_EQ(jb, ja) << what;
+    EXPECT_TRUE(ja.contains(std::string(what) == "pressure" ? "channels" : "k_fd_N_per_mm")) << ja.dump();
+  }
+}
+#endif
 
 TEST_F(AnalyzeDir, IndentationOnAHertzSolidRecoversEstarContactPointDelta0AndTangents) {
   // E = 1.5 MPa (the paper's solid is 1.59): 1.44 mm deep at 3 A, 9 um steps at 0.25 mm

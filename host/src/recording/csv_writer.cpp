@@ -34,11 +34,8 @@ std::string errno_text() { return std::strerror(errno); }
 
 /// Opens a new, hidden file beside `final_path` that nobody else has (O_EXCL).
 std::FILE* create_temporary(const fs::path& final_path, fs::path& temporary) {
-  static std::atomic<unsigned> counter{0};
   for (int attempt = 0; attempt < 1000; ++attempt) {
-    temporary = final_path.parent_path() /
-                ("." + final_path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                 std::to_string(counter.fetch_add(1)));
+    temporary = rd::temporary_sibling(final_path);
     if (std::FILE* f = std::fopen(temporary.c_str(), "wbx")) return f;
     if (errno != EEXIST)
       throw RecordingError(final_path.string(), 0,
@@ -56,13 +53,6 @@ bool sync_and_close(std::FILE* f) {
   return synced && closed;
 }
 
-void sync_directory(const fs::path& dir) {
-  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) return;  // best effort: the renames are done either way
-  (void)::fsync(fd);
-  ::close(fd);
-}
-
 char* put(char* p, double v) { return std::to_chars(p, p + rd::kNumberChars, v).ptr; }
 template <class Int>
 char* put_int(char* p, Int v) {
@@ -70,6 +60,20 @@ char* put_int(char* p, Int v) {
 }
 
 }  // namespace
+
+fs::path rd::temporary_sibling(const fs::path& final_path) {
+  static std::atomic<unsigned> counter{0};
+  return final_path.parent_path() / ("." + final_path.filename().string() + ".tmp-" +
+                                     std::to_string(::getpid()) + "-" +
+                                     std::to_string(counter.fetch_add(1)));
+}
+
+void rd::sync_directory(const fs::path& dir) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;  // best effort: the renames are done either way
+  (void)::fsync(fd);
+  ::close(fd);
+}
 
 std::string rd::utc_now() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -232,7 +236,7 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
     throw RecordingError(csv_name, 0, "cannot rename the finished CSV into place: " + ec.message());
   }
   w.finished = true;
-  sync_directory(w.csv_final.parent_path());
+  rd::sync_directory(w.csv_final.parent_path());
 }
 
 std::uint64_t RecordingWriter::rows() const { return impl_->rows; }

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -76,6 +77,17 @@ nlohmann::ordered_json sidecar_document(const Sidecar& sidecar);
 
 /// "a string", "an object", "null", ...: a JSON value's kind for messages.
 std::string json_kind(const nlohmann::json& value);
+
+/// A hidden name beside `final_path`, `.run.csv.tmp-<pid>-<n>`, that no other writer of this
+/// process uses (the caller still creates it exclusively): where an atomic writer writes before
+/// it renames. A crash leaves at most such a file, which can be deleted.
+std::filesystem::path temporary_sibling(const std::filesystem::path& final_path);
+/// Flushes a directory's entries (after a rename) to the disk; best effort.
+void sync_directory(const std::filesystem::path& dir);
+
+/// ConfigError "<who>: column i_A has 3 values where t_s has 4" unless every column the
+/// recording has is as long as t_s.
+void check_column_lengths(const Recording& recording, std::string_view who);
 
 /// "2025-01-31T14:05:09Z", now: a sidecar's and a result.json's created_utc.
 std::string utc_now();

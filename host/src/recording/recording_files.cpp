@@ -2,9 +2,11 @@
 #include "palp/recording.hpp"
 
 #include "palp/error.hpp"
+#include "recording/internal.hpp"
 
 namespace palp {
 namespace fs = std::filesystem;
+namespace rd = recording_detail;
 
 fs::path recording_csv_path(const fs::path& csv_or_stem) {
   if (csv_or_stem.extension() == ".csv") return csv_or_stem;
@@ -19,11 +21,11 @@ fs::path recording_sidecar_path(const fs::path& csv) {
   return p;
 }
 
-void write_recording(const fs::path& csv_or_stem, const Recording& r, Overwrite overwrite) {
+void rd::check_column_lengths(const Recording& r, std::string_view who) {
   const std::size_t n = r.size();
   const auto check = [&](std::string_view name, std::size_t size) {
     if (size != n)
-      throw ConfigError("write_recording: column " + std::string(name) + " has " +
+      throw ConfigError(std::string(who) + ": column " + std::string(name) + " has " +
                         std::to_string(size) + " values where t_s has " + std::to_string(n));
   };
   check("i_A", r.i_A.size());
@@ -34,6 +36,11 @@ void write_recording(const fs::path& csv_or_stem, const Recording& r, Overwrite 
   for (std::size_t k = 0; k < r.p_Pa.size(); ++k)
     if (r.p_Pa[k]) check(column_name(pressure_column(k)), r.p_Pa[k]->size());
   if (r.status) check("status", r.status->size());
+}
+
+void write_recording(const fs::path& csv_or_stem, const Recording& r, Overwrite overwrite) {
+  const std::size_t n = r.size();
+  rd::check_column_lengths(r, "write_recording");
 
   RecordingWriter writer(csv_or_stem, {.columns = r.columns(), .overwrite = overwrite});
   RecordingRow row;

@@ -1,0 +1,75 @@
+// Recordings and result directories as HDF5 files (issue 22): one self-describing binary file a
+// lab opens in Python (h5py), MATLAB (h5read) or HDFView without palp. The layout, for people and
+// other programs, is docs/hdf5-format.md; this header is the SDK's side of it.
+//
+//   palp::write_recording_hdf5("run.h5", palp::read_recording("run.csv"));
+//   palp::Recording r = palp::read_recording_hdf5("run.h5");     // the same Recording again
+//
+//   palp::write_result_hdf5("solid-p3.h5", palp::load_result("results/solid-p3"));
+//   palp::LoadedResult res = palp::read_result_hdf5("solid-p3.h5");
+//   palp::IndentationRun again = palp::indentation_run_of(res);  // re-analysable, as from the dir
+//
+// The samples are typed columns (float64, uint64, uint16, int32), chunked and deflate-compressed,
+// each with a `unit` attribute in the recording's lab units (s, A, mm, Pa; "1" for indices,
+// counts and bits). The sidecar's keys are attributes of the recording's group; its objects
+// (program, device, calibration, zeroing) are JSON text, so they read back exactly. Values are
+// stored as the doubles they are: reading back is bit-exact.
+//
+// Library palp::hdf5 (palp_hdf5), built only when CMake finds the HDF5 C library (Debian's
+// libhdf5-dev); palp::analysis and palp::device never need it.
+//
+// Writing is atomic, as for every palp file: a hidden temporary file beside the target
+// (`.run.h5.tmp-<pid>-<n>`), flushed to disk, renamed into place. An existing target is refused
+// with Overwrite::no, and with Overwrite::yes replaced only when palp wrote it (an HDF5 file whose
+// root carries palp_format); anything else is a ConfigError and stays untouched.
+//
+// Reading: a file that is not HDF5, not palp's, of another palp_format version, or damaged (a
+// missing or mistyped dataset or attribute, columns of unequal length, more rows than the file
+// can hold) is a RecordingError naming the file and the object: one line, never a crash and never
+// HDF5's own error stack on stderr.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "palp/recording.hpp"
+#include "palp/result.hpp"
+
+namespace palp {
+
+/// The root attribute `palp_format` of every HDF5 file palp writes. The reader accepts version 1.
+inline constexpr std::string_view kHdf5Format = "palp.hdf5/1";
+
+/// What a palp HDF5 file holds: its root attribute `content`.
+inline constexpr std::string_view kHdf5ContentRecording = "recording";
+inline constexpr std::string_view kHdf5ContentResult = "result";
+
+/// Whether a file starts with HDF5's signature (\x89HDF\r\n\x1a\n): how palpctl tells an .h5 input
+/// from a CSV. False for a file that cannot be read.
+bool is_hdf5_file(const std::filesystem::path& path);
+
+/// Writes a recording (its columns and, when it has one, its sidecar) as `path`. ConfigError for
+/// columns of unequal length, a recording without samples, or an existing `path` that may not be
+/// replaced (above); RecordingError when the disk refuses.
+void write_recording_hdf5(const std::filesystem::path& path, const Recording& recording,
+                          Overwrite overwrite = Overwrite::no);
+
+/// Reads a recording palp wrote with write_recording_hdf5: the same columns, sidecar, rep_source
+/// and ignored_columns. RecordingError (file, 0, problem) for anything else.
+Recording read_recording_hdf5(const std::filesystem::path& path);
+
+/// Writes a result directory read back with load_result (result.json and its recordings) as one
+/// file: result.json as text and its analysed numbers as attributes, every recording as a group.
+void write_result_hdf5(const std::filesystem::path& path, const LoadedResult& result,
+                       Overwrite overwrite = Overwrite::no);
+
+/// Reads a result written by write_result_hdf5: `dir` is the file's path, `summary` result.json,
+/// `recordings` by their names in the result directory ("indentation.csv").
+LoadedResult read_result_hdf5(const std::filesystem::path& path);
+
+/// The root `content` of a palp HDF5 file ("recording" or "result"); RecordingError when the file
+/// is not a palp HDF5 file of a version this SDK reads.
+std::string hdf5_content(const std::filesystem::path& path);
+
+}  // namespace palp
