@@ -11,8 +11,9 @@
 //
 // The samples are typed columns (float64, uint64, uint16, int32), chunked and deflate-compressed,
 // each with a `unit` attribute in the recording's lab units (s, A, mm, Pa; "1" for indices,
-// counts and bits). The sidecar's keys are attributes of the recording's group; its objects
-// (program, device, calibration, zeroing) are JSON text, so they read back exactly. Values are
+// counts and bits). The sidecar is an attribute of the recording's group, as JSON text (so it
+// reads back exactly), and its values are also typed attributes for a quick look. Strings are
+// fixed-length UTF-8 (HDF5 1.10 crashes on damaged variable-length ones). Values are
 // stored as the doubles they are: reading back is bit-exact.
 //
 // Library palp::hdf5 (palp_hdf5), built only when CMake finds the HDF5 C library (Debian's

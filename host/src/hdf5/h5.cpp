@@ -41,9 +41,13 @@ void check(herr_t r, const Where& w, const char* what, int) {
   if (r < 0) fail(w, std::string("HDF5 cannot ") + what);
 }
 
-Id utf8_string_type(const Where& w) {
+/// A fixed-length UTF-8 string type of `bytes` bytes (at least 1), NUL-padded. Not a
+/// variable-length string: HDF5 1.10 keeps those in the global heap, and reading a damaged one
+/// crashes or hangs inside the library (docs/hdf5-format.md "Reading").
+Id utf8_string_type(std::size_t bytes, const Where& w) {
   Id t(check(H5Tcopy(H5T_C_S1), w, "make a string type"), H5Tclose);
-  check(H5Tset_size(t.get(), H5T_VARIABLE), w, "make a string type", 0);
+  check(H5Tset_size(t.get(), std::max<std::size_t>(bytes, 1)), w, "make a string type", 0);
+  check(H5Tset_strpad(t.get(), H5T_STR_NULLPAD), w, "make a string type", 0);
   check(H5Tset_cset(t.get(), H5T_CSET_UTF8), w, "make a string type", 0);
   return t;
 }
@@ -67,10 +71,10 @@ Id create_group(hid_t parent, const Where& w) {
 }
 
 void put_attr(hid_t obj, const char* name, std::string_view text, const Where& w) {
-  const Id t = utf8_string_type(w);
-  const std::string s(text);
-  const char* p = s.c_str();
-  put_scalar_attr(obj, name, t.get(), t.get(), &p, w);
+  const Id t = utf8_string_type(text.size(), w);
+  std::string padded(text);
+  padded.resize(std::max<std::size_t>(text.size(), 1), '\0');
+  put_scalar_attr(obj, name, t.get(), t.get(), padded.data(), w);
 }
 void put_attr(hid_t obj, const char* name, double value, const Where& w) {
   put_scalar_attr(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, w);
@@ -156,19 +160,15 @@ std::string get_string_attr(hid_t obj, const char* name, const Where& w_obj, std
   Id a(check(H5Aopen(obj, name, H5P_DEFAULT), w, "open the attribute"), H5Aclose);
   Id ft(check(H5Aget_type(a.get()), w, "read the attribute's type"), H5Tclose);
   Id space(check(H5Aget_space(a.get()), w, "read the attribute's shape"), H5Sclose);
-  if (H5Tget_class(ft.get()) != H5T_STRING || H5Tis_variable_str(ft.get()) <= 0 ||
+  if (H5Tget_class(ft.get()) != H5T_STRING || H5Tis_variable_str(ft.get()) != 0 ||
       H5Sget_simple_extent_type(space.get()) != H5S_SCALAR)
-    fail(w, "is not a single variable-length string");
-  Id mt(check(H5Tcopy(H5T_C_S1), w, "make a string type"), H5Tclose);
-  check(H5Tset_size(mt.get(), H5T_VARIABLE), w, "make a string type", 0);
-  check(H5Tset_cset(mt.get(), H5Tget_cset(ft.get())), w, "make a string type", 0);
-  char* p = nullptr;
-  check(H5Aread(a.get(), mt.get(), &p), w, "read the attribute");
-  std::string text = p != nullptr ? std::string(p) : std::string();
-  H5free_memory(p);
-  if (text.size() > max_bytes)
-    fail(w, "has " + std::to_string(text.size()) + " bytes, more than the limit of " +
-                std::to_string(max_bytes));
+    fail(w, "is not a single fixed-length string");
+  const std::size_t size = H5Tget_size(ft.get());
+  if (size == 0 || size > max_bytes)
+    fail(w, "has " + std::to_string(size) + " bytes, more than the limit of " + std::to_string(max_bytes));
+  std::string text(size, '\0');
+  check(H5Aread(a.get(), ft.get(), text.data()), w, "read the attribute (damaged?)");
+  text.resize(std::strlen(text.c_str()));  // the NUL padding
   return text;
 }
 
@@ -280,7 +280,10 @@ void write_palp_file(const fs::path& path, Overwrite overwrite, std::string_view
   std::error_code ec;
   try {
     {
-      Id f(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+      // the 1.8 file format at least: an attribute over 64 KiB (a long sidecar) is stored densely
+      Id fapl(check(H5Pcreate(H5P_FILE_ACCESS), root, "make a file access property list"), H5Pclose);
+      check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), root, "set the file format", 0);
+      Id f(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()), H5Fclose);
       if (!f.valid()) throw RecordingError(path.string(), 0, "cannot create " + tmp.string());
       put_attr(f.get(), "palp_format", kHdf5Format, root);
       put_attr(f.get(), "content", content, root);

@@ -17,6 +17,11 @@ doc, fixture = sys.argv[1], sys.argv[2]
 failures = []
 
 
+def text(value):
+    """A palp string attribute: fixed-length UTF-8, which h5py gives as bytes."""
+    return value.decode("utf-8") if isinstance(value, bytes) else value
+
+
 def check(cond, what):
     if not cond:
         failures.append(what)
@@ -38,34 +43,34 @@ def check_recording(g, where):
     check(list(g["p6_Pa"][:]) == [1.4, 2.4, 3.4, 4.4, 5.4], f"{where}/p6_Pa values")
     check(g["t_s"].compression == "gzip" and g["t_s"].chunks is not None, f"{where}/t_s chunked+deflate")
     check(int(g.attrs["rows"]) == 5, f"{where}@rows")
-    check(g.attrs["device.firmware_version"] == "1.2.0", f"{where}@device.firmware_version")
-    check(g.attrs["device.protocol"] == "1.0", f"{where}@device.protocol")
+    check(text(g.attrs["device.firmware_version"]) == "1.2.0", f"{where}@device.firmware_version")
+    check(text(g.attrs["device.protocol"]) == "1.0", f"{where}@device.protocol")
     check(g.attrs["calibration.kf_N_per_A"] == 2.918, f"{where}@calibration.kf_N_per_A")
     check(list(g.attrs["calibration.pressure_offsets_Pa"]) == [12.5, 11.0, 13.25, 12.0, 10.5, 11.75],
           f"{where}@calibration.pressure_offsets_Pa")
-    check(g.attrs["stroke_origin_z_mm_reason"] == "the probe was not homed before this run",
+    check(text(g.attrs["stroke_origin_z_mm_reason"]) == "the probe was not homed before this run",
           f"{where}@stroke_origin_z_mm_reason")
-    side = json.loads(g.attrs["sidecar"])
+    side = json.loads(text(g.attrs["sidecar"]))
     check(side["schema"] == "palp.recording/1" and side["specimen"] == "insert, position 3",
           f"{where}@sidecar JSON")
     check(side["zeroing"][0]["what"] == "current_offset", f"{where}@sidecar zeroing")
 
 
 with h5py.File(os.path.join(fixture, "recording.h5"), "r") as f:
-    check(f.attrs["palp_format"] == "palp.hdf5/1", "recording.h5 palp_format")
-    check(f.attrs["content"] == "recording", "recording.h5 content")
+    check(text(f.attrs["palp_format"]) == "palp.hdf5/1", "recording.h5 palp_format")
+    check(text(f.attrs["content"]) == "recording", "recording.h5 content")
     check_recording(f["recording"], "recording.h5:/recording")
 
 with h5py.File(os.path.join(fixture, "result.h5"), "r") as f:
-    check(f.attrs["content"] == "result", "result.h5 content")
+    check(text(f.attrs["content"]) == "result", "result.h5 content")
     r = f["result"]
-    summary = json.loads(r.attrs["result_json"])
+    summary = json.loads(text(r.attrs["result_json"]))
     check(summary["analysis"]["k_fd_N_per_mm"] == 0.125, "result_json analysis")
-    check(r.attrs["firmware_version"] == "1.2.0", "/result@firmware_version")
+    check(text(r.attrs["firmware_version"]) == "1.2.0", "/result@firmware_version")
     a = r["analysis"].attrs
     check(a["k_fd_N_per_mm"] == 0.125 and a["delta0_mm"] == 1.5, "/result/analysis numbers")
-    check(a["model_by_aic"] == "hertz" and a["k_at_depth_N_per_mm.1_mm"] == 0.25, "/result/analysis others")
-    check("E_star_hertz_Pa" not in a and a["E_star_hertz_Pa_reason"] == "too few points", "null analysis value")
+    check(text(a["model_by_aic"]) == "hertz" and a["k_at_depth_N_per_mm.1_mm"] == 0.25, "/result/analysis others")
+    check("E_star_hertz_Pa" not in a and text(a["E_star_hertz_Pa_reason"]) == "too few points", "null analysis value")
     check(r["pressure"].attrs["contact_point_mm"] == 25.0, "/result/pressure@contact_point_mm")
     check(list(r["recordings"].keys()) == ["indentation.csv"], "/result/recordings members")
     check_recording(r["recordings"]["indentation.csv"], "result.h5:/result/recordings/indentation.csv")
@@ -75,7 +80,7 @@ for name in ("recording.h5", "result.h5"):
     documented = {p: u for p, k, t, u in hdf5_doc_layout.rows_for(doc, name) if k == "dataset"}
     with h5py.File(os.path.join(fixture, name), "r") as f:
         found = {}
-        f.visititems(lambda n, o: found.__setitem__("/" + n, o.attrs.get("unit"))
+        f.visititems(lambda n, o: found.__setitem__("/" + n, text(o.attrs.get("unit")))
                      if isinstance(o, h5py.Dataset) else None)
     check(set(found) == set(documented), f"{name}: datasets {sorted(set(found) ^ set(documented))} "
                                          "are in the file or the doc, not both")

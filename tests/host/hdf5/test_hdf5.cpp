@@ -96,6 +96,13 @@ TEST_F(Hdf5, CsvRecordingThroughHdf5EqualsTheCsvRead) {
   expect_same(palp::read_recording_hdf5(dir_ / "run.h5"), from_csv);  // csv_rows and crc kept
 }
 
+TEST_F(Hdf5, SidecarOverTheAttributeHeadersSixtyFourKiBReadsBack) {
+  palp::Recording r = palp_test::known_recording();
+  r.sidecar->extra["notes"] = std::string(200000, 'x') + "\u00e9";  // and UTF-8
+  palp::write_recording_hdf5(dir_ / "run.h5", r);
+  expect_same(palp::read_recording_hdf5(dir_ / "run.h5"), r);
+}
+
 TEST_F(Hdf5, RecordingWithOnlyTheRequiredColumnsAndNoSidecarStaysSo) {
   palp::Recording r;
   r.sample_index.reset();
@@ -189,16 +196,33 @@ TEST_F(Hdf5, DamagedOrForeignFilesAreOneClearError) {
   edit(v2, [](hid_t f) {
     H5Adelete(f, "palp_format");
     const hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_size(t, 11);
     const hid_t s = H5Screate(H5S_SCALAR);
     const hid_t a = H5Acreate2(f, "palp_format", t, s, H5P_DEFAULT, H5P_DEFAULT);
-    const char* text = "palp.hdf5/2";
-    H5Awrite(a, t, &text);
+    H5Awrite(a, t, "palp.hdf5/2");
     H5Aclose(a);
     H5Sclose(s);
     H5Tclose(t);
   });
   EXPECT_THAT(read_error(v2), HasSubstr("update the SDK"));
+
+  // a variable-length string (HDF5's global heap, which HDF5 1.10 reads unsafely when damaged)
+  const fs::path vl = copy("vl.h5");
+  edit(vl, [](hid_t f) {
+    H5Adelete_by_name(f, "/recording", "rep_source", H5P_DEFAULT);
+    const hid_t g = H5Gopen2(f, "/recording", H5P_DEFAULT);
+    const hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    const hid_t s = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate2(g, "rep_source", t, s, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = "column";
+    H5Awrite(a, t, &text);
+    H5Aclose(a);
+    H5Sclose(s);
+    H5Tclose(t);
+    H5Gclose(g);
+  });
+  EXPECT_THAT(read_error(vl), HasSubstr("/recording/rep_source: is not a single fixed-length string"));
 
   const fs::path no_i = copy("no_i.h5");
   edit(no_i, [](hid_t f) { H5Ldelete(f, "/recording/i_A", H5P_DEFAULT); });
