@@ -112,13 +112,16 @@ Loaded load(const std::string& file, const an::IndentationParams& p) {
                                    fmt(p.contact_current_A) + " A, the fits need at least " +
                                    std::to_string(p.min_points));
   if (static_cast<int>(contact.size()) < p.min_points) {
-    const auto a = l.line_of(static_cast<std::size_t>(contact.front()));
-    const auto b = l.line_of(static_cast<std::size_t>(contact.back()));
+    // a CSV's file lines; an .h5 has none, so its rows (from 0)
+    const bool rows = l.lines.empty();
+    const auto a = rows ? static_cast<std::size_t>(contact.front()) : l.line_of(static_cast<std::size_t>(contact.front()));
+    const auto b = rows ? static_cast<std::size_t>(contact.back()) : l.line_of(static_cast<std::size_t>(contact.back()));
+    const std::string what = rows ? " (row" : " (line";
     throw palp::RecordingError(
         file, 0,
         "too few points: " + std::to_string(contact.size()) + " loading sample" +
             (contact.size() == 1 ? "" : "s") + " at i_A >= I_c = " + fmt(p.contact_current_A) +
-            " A (line" + (a == b ? " " + std::to_string(a) : "s " + std::to_string(a) + "-" +
+            " A" + what + (a == b ? " " + std::to_string(a) : "s " + std::to_string(a) + "-" +
                                                                   std::to_string(b)) +
             "), the fits need at least " + std::to_string(p.min_points));
   }

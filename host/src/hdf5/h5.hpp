@@ -73,7 +73,7 @@ void silence_hdf5();
 // --- writing -----------------------------------------------------------------------------------
 
 Id create_group(hid_t parent, const Where& w);
-/// A scalar attribute: a UTF-8 variable-length string, a float64, an uint64 or an int64.
+/// A scalar attribute: a fixed-length UTF-8 string, a float64, an uint64 or an int64.
 void put_attr(hid_t obj, const char* name, std::string_view text, const Where& w);
 void put_attr(hid_t obj, const char* name, double value, const Where& w);
 void put_attr(hid_t obj, const char* name, std::uint64_t value, const Where& w);
