@@ -13,11 +13,12 @@
 namespace palp::test {
 
 /// The known linear stiffness of the specimen at a point of the synthetic map, N/m:
-/// 1.0, 1.5 (row 1), 2.0, 2.5 N/mm (row 2).
+/// 1.5, 2.0 (row 1), 2.5, 3.0 N/mm (row 2); 2.5 at row 1, column 3.
 inline double synth_k_N_per_m(int row, int column) { return 1e3 * (0.5 + 1.0 * row + 0.5 * (column - 1)); }
 
 /// An indentation run as indent() returns it, of a linear specimen of stiffness k: the staircase
-/// 0.5 -> 1.5 A by 5 mA and back, `reps` times, noise free, contact at contact_z_m.
+/// 0.5 -> 1.5 A by 5 mA and back, `reps` times, contact at contact_z_m, with 0.2 mA rms of
+/// current noise (so the repetitions differ; seeded, so every run is the same).
 inline IndentationRun synth_linear_run(double k_N_per_m, double contact_z_m, int reps) {
   analysis::test::SynthSpec spec;
   spec.object_force = [k_N_per_m](double d) { return d > 0 ? k_N_per_m * d : 0.0; };
@@ -26,6 +27,7 @@ inline IndentationRun synth_linear_run(double k_N_per_m, double contact_z_m, int
   spec.i_step_A = 0.005;
   spec.reps = reps;
   spec.command_column = true;
+  spec.noise_A = 2e-4;
   const analysis::Curve c = analysis::test::synth_curve(spec);
   IndentationRun run;
   run.settings = IndentationSettings::preset(IndentationPreset::two_d);

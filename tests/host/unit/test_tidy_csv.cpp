@@ -105,7 +105,7 @@ TEST_F(TidyCsv, EveryRowIsAPointsRepetitionWithItsKnownStiffness) {
   const auto& h = rows.front();
   EXPECT_EQ(h, palp::tidy_csv_columns(palp::IndentationSettings::preset(palp::IndentationPreset::two_d).analysis));
   const std::size_t kfd = column_index(h, "k_fd_N_per_mm"), klin = column_index(h, "k_linear_N_per_mm"),
-                    kat2 = column_index(h, "k_at_depth_2_mm_N_per_mm"), model = column_index(h, "model_by_aic"),
+                    kat1 = column_index(h, "k_at_depth_1_mm_N_per_mm"), model = column_index(h, "model_by_aic"),
                     x = column_index(h, "x_mm"), y = column_index(h, "y_mm");
   for (std::size_t n = 1; n < rows.size(); ++n) {
     const auto& r = rows[n];
@@ -116,9 +116,14 @@ TEST_F(TidyCsv, EveryRowIsAPointsRepetitionWithItsKnownStiffness) {
     EXPECT_EQ(r[2], std::to_string((n - 1) % 2));  // rep as the recording numbers it
     EXPECT_EQ(r[6], "");                           // point_reason
     const double k_N_per_mm = palp::test::synth_k_N_per_m(row, column) * 1e-3;
-    EXPECT_NEAR(std::stod(r[kfd]), k_N_per_mm, 1e-6 * k_N_per_mm) << "row " << n;
-    EXPECT_NEAR(std::stod(r[klin]), k_N_per_mm, 1e-6 * k_N_per_mm) << "row " << n;
-    EXPECT_NEAR(std::stod(r[kat2]), k_N_per_mm, 1e-6 * k_N_per_mm) << "row " << n;
+    EXPECT_NEAR(std::stod(r[kfd]), k_N_per_mm, 0.02 * k_N_per_mm) << "row " << n;
+    EXPECT_NEAR(std::stod(r[klin]), k_N_per_mm, 0.005 * k_N_per_mm) << "row " << n;
+    if (row == 2 && column == 2) {  // 3 N/mm: the ramp's top force reaches 0.96 mm only
+      EXPECT_EQ(r[kat1], "");
+      EXPECT_EQ(r[kat1 + 1].rfind("depth 1 mm, beyond the deepest loading sample (0.9586", 0), 0u) << r[kat1 + 1];
+    } else {
+      EXPECT_NEAR(std::stod(r[kat1]), k_N_per_mm, 0.005 * k_N_per_mm) << "row " << n;
+    }
     EXPECT_EQ(r[model], "linear");
     EXPECT_NEAR(std::stod(r[x]), 10.0 * column, 1e-9);  // the touch's x, y in the work object (mm)
     EXPECT_NEAR(std::stod(r[y]), 20.0 * row, 1e-9);
@@ -149,10 +154,12 @@ TEST_F(TidyCsv, ColumnsHoldEveryKeyOfARepetitionsSummaryButTheModelFreeStandardE
       continue;
     }
     EXPECT_TRUE(has(key)) << key;
-    if (!value.is_boolean() && key != "F0_N" && key.rfind("n_", 0) != 0) EXPECT_TRUE(has(key + "_reason")) << key;
+    if (!value.is_boolean() && key != "F0_N" && key.rfind("n_", 0) != 0) {
+      EXPECT_TRUE(has(key + "_reason")) << key;
+    }
     ++checked;
   }
-  EXPECT_GE(checked, 40);
+  EXPECT_GE(checked, 38);  // 30 keys and 2 x 4 tangent depths
 }
 
 TEST_F(TidyCsv, ADamagedPointKeepsOneRowWithTheReadersErrorAndTheExportGoesOn) {
@@ -160,7 +167,7 @@ TEST_F(TidyCsv, ADamagedPointKeepsOneRowWithTheReadersErrorAndTheExportGoesOn) {
   fs::remove(root_ / "map/points/r1_c2/result.json");
   palp::TidyCsvExport e;
   const auto rows = parse_csv(palp::tidy_csv(root_ / "map", &e));
-  const std::string error = (root_ / "map/points/r1_c2/result.json").string() + ": no result.json: not a result directory";
+  const std::string error = (root_ / "map/points/r1_c2/result.json").string() + ": no result.json: not a result directory (or unreadable)";
   ASSERT_EQ(e.damaged, std::vector<std::string>{error});
   ASSERT_EQ(rows.size(), 1u + 2 + 1 + 2 + 2);
   EXPECT_EQ(e.rows, 7u);
@@ -215,7 +222,7 @@ TEST_F(TidyCsv, AResultDirectoryGivesItsRepetitionsWithoutRowColumnOrPosition) {
   for (std::size_t n = 1; n < 4; ++n) {
     EXPECT_EQ(rows[n][0] + rows[n][1] + "|" + rows[n][2] + "|" + rows[n][3] + rows[n][4] + rows[n][5],
               "|" + std::to_string(n - 1) + "|");
-    EXPECT_NEAR(std::stod(rows[n][column_index(rows[0], "k_fd_N_per_mm")]), 1.5, 1.5e-6);
+    EXPECT_NEAR(std::stod(rows[n][column_index(rows[0], "k_fd_N_per_mm")]), 1.5, 0.03);
   }
 }
 
