@@ -163,8 +163,9 @@ TEST(Map, CancelledMapResumesFromTheFirstUnfinishedPointWithoutRepeats) {
 
 // The tidy CSV of a map palp-sim made, read by an independent reader (Debian's Python, stdlib
 // csv; /usr/bin/python3, not the python3 first on PATH): a row per repetition, and the spread of
-// each point's per-repetition k_fd is exactly the s.d. its result.json gives (the same
-// repetitions, each analysed alone, again from the recording: to 1e-9).
+// each point's per-repetition k_fd is the s.d. its result.json gives (the same repetitions, each
+// analysed alone, again from what the directory holds: to 1e-6, as its lab-unit numbers can
+// differ from the run's in their last bits and the s.d. of close values magnifies that).
 TEST(Map, ItsTidyCsvHasARowPerRepetitionWhoseKfdSpreadIsTheResultsSd) {
   InprocSimulator sim({.phantom = "pad_2d", .robot = true});
   palp::Probe probe(sim.transport());
@@ -207,8 +208,7 @@ print(json.dumps({"rows": len(rows), "points": points}))
     EXPECT_EQ(point["reps"], nlohmann::json::array({"0", "1"}));
     const double sd = point["sd"].get<double>(), want = point["result_sd"].get<double>();
     EXPECT_GT(want, 0.0);
-    // the same repetitions analysed again from the recording's text: equal to its rounding
-    EXPECT_NEAR(sd, want, 1e-9 * want);
+    EXPECT_NEAR(sd, want, 1e-6 * want);
   }
   std::filesystem::remove_all(dir);
 }
