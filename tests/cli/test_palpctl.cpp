@@ -56,7 +56,7 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--overwrite", "--reps",          "--no-unload",     "--cycles",       "--settle-cycles",
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
       "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
-      "--input", "--poisson", "--unbonded", "--preset", "--kf-table"};
+      "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
@@ -83,6 +83,7 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       {{"touch-off"}, {"--rig", "--p1-mm", "--p2-mm", "--p3-mm", "--abc-deg", "--contact-E-star-Pa"}},
       {{"map"}, {"--rig", "--plan", "--out-dir", "--resume", "--preset", "--reps"}},
       {{"analyze", "map"}, {"--input", "--contrast"}},
+      {{"export"}, {"--format", "--input", "--out", "--overwrite"}},
       {{"analyze"}, {}},
       {{"analyze", "indentation"},
        {"--input", "--kf-N-per-A", "--ic-A", "--kv-N-per-mm", "--tip-radius-mm", "--poisson",

@@ -81,6 +81,10 @@ StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& pl
 
 /// Reads a map directory's map.json (ConfigError "file: problem").
 StiffnessMap load_map(const std::filesystem::path& dir);
+/// Writes `m` as dir/map.json (dir created), atomically (a temporary file renamed over it), as
+/// map_plan does after every point: for tools and tests that assemble a map from result
+/// directories (write_result) of their own. load_map reads it back.
+void save_map(const std::filesystem::path& dir, const StiffnessMap& m);
 
 /// The map's analysis: the stiffness grid and the lines (rows, columns) that stand out.
 struct MapAnalysis {

@@ -35,6 +35,12 @@ RecordingRow row_of(const Sample& s) {
 
 }  // namespace
 
+std::string depth_key(double depth_m) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, std::round(depth_m * 1e9) / 1e6);
+  return std::string(buf, r.ptr) + "_mm";
+}
+
 void wait_device_time(Probe& probe, double until_s, const std::function<bool()>& cancelled) {
   while (probe.status().t_device_s < until_s) {
     if (cancelled && cancelled()) return;

@@ -70,6 +70,11 @@ ProgramRecording record_program(Probe& probe, const std::function<void()>& load_
                                 const std::function<void(double, const Sample&)>& progress,
                                 const std::function<bool()>& cancelled);
 
+/// The key of a tangent depth in the summary's k_at_depth_N_per_mm ("1_mm", "0.5_mm": the depth
+/// in mm to the nearest nm, shortest decimal). result.json and the tidy CSV (tidy_csv.hpp) name
+/// depths with it.
+std::string depth_key(double depth_m);
+
 /// A PhaseMode by its catalogue name; ConfigError "where: unknown phase_mode ..." else.
 proto::PhaseMode phase_mode_named(const std::string& name, const std::string& where);
 

@@ -211,6 +211,11 @@ StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& pl
   return Mapper(probe, robot, rig, plan, dir, options).run();
 }
 
+void save_map(const std::filesystem::path& dir, const StiffnessMap& m) {
+  std::filesystem::create_directories(dir);
+  detail::write_json_atomically(dir / "map.json", map_json(m));
+}
+
 StiffnessMap load_map(const std::filesystem::path& dir) {
   const std::filesystem::path file = dir / "map.json";
   const json j = detail::read_json_file(file);

@@ -32,12 +32,6 @@ void put(json& j, const std::string& key, const Value& v, double scale) {
   }
 }
 
-std::string depth_key(double depth_m) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, std::round(depth_m * 1e9) / 1e6);
-  return std::string(buf, r.ptr) + "_mm";
-}
-
 /// A fit's parameter by name, with its standard error.
 struct Param {
   Value value, se;
@@ -216,7 +210,7 @@ json indentation_summary_json(const analysis::IndentationResult& r,
   }
   json at = json::object(), at_sd = json::object(), at_se = json::object();
   for (std::size_t k = 0; k < r.tangent_depths_m.size() && k < r.k_tangent_N_per_m.size(); ++k) {
-    const std::string key = depth_key(r.tangent_depths_m[k]);
+    const std::string key = experiment::depth_key(r.tangent_depths_m[k]);
     put(at, key, r.k_tangent_N_per_m[k], kNPerMm);
     put(at_se, key, k < se.k_tangent_N_per_m.size() ? se.k_tangent_N_per_m[k] : Value::absent("no model fitted"), kNPerMm);
     if (reps && k < reps->k_tangent_N_per_m.size())

@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
+
+#include <nlohmann/json.hpp>
 
 #include "palp/analysis/pressure.hpp"
 #include "palp/map.hpp"
@@ -12,6 +16,7 @@
 #include "palp/probe.hpp"
 #include "palp/robot.hpp"
 #include "palp/sim_inproc.hpp"
+#include "palp/tidy_csv.hpp"
 #include "sanitized.hpp"
 
 namespace {
@@ -152,6 +157,58 @@ TEST(Map, CancelledMapResumesFromTheFirstUnfinishedPointWithoutRepeats) {
   for (std::size_t k = 0; k < 2; ++k) {  // kept (to the rounding of map.json's N/mm)
     ASSERT_TRUE(whole.points[k].k_fd_N_per_m && part.points[k].k_fd_N_per_m);
     EXPECT_NEAR(*whole.points[k].k_fd_N_per_m, *part.points[k].k_fd_N_per_m, 1e-9 * *part.points[k].k_fd_N_per_m);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// The tidy CSV of a map palp-sim made, read by an independent reader (Debian's Python, stdlib
+// csv; /usr/bin/python3, not the python3 first on PATH): a row per repetition, and the spread of
+// each point's per-repetition k_fd is the s.d. its result.json gives (the same repetitions, each
+// analysed alone, again from what the directory holds: to 1e-6, as its lab-unit numbers can
+// differ from the run's in their last bits and the s.d. of close values magnifies that).
+TEST(Map, ItsTidyCsvHasARowPerRepetitionWhoseKfdSpreadIsTheResultsSd) {
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const auto dir = fresh_dir("palp_map_tidy_csv");
+  palp::MapOptions o;
+  o.settings.repetitions = 2;
+  o.settings.stop_A = 1.5;  // a short ramp
+  palp::Plan plan = pad_plan(1, 0.040);
+  plan.grid.columns = 2;
+  const palp::StiffnessMap m = palp::map_plan(probe, *robot, pad_rig(sim), plan, dir, o);
+  ASSERT_TRUE(m.complete) << m.stopped_because;
+  const std::filesystem::path csv = dir / "export" / "map.csv";
+  const palp::TidyCsvExport e = palp::export_tidy_csv(dir, csv);
+  EXPECT_EQ(e.rows, 4u);
+  EXPECT_TRUE(e.damaged.empty());
+  const std::filesystem::path script = dir / "export" / "read.py";
+  std::ofstream(script) << R"(import csv, json, os, statistics, sys
+with open(sys.argv[1], newline="") as f:
+    rows = list(csv.DictReader(f))
+points = []
+for c in ("1", "2"):
+    mine = [r for r in rows if r["row"] == "1" and r["column"] == c]
+    with open(os.path.join(sys.argv[2], "points", "r1_c" + c, "result.json")) as f:
+        result = json.load(f)
+    points.append({"reps": [r["rep"] for r in mine],
+                   "sd": statistics.stdev(float(r["k_fd_N_per_mm"]) for r in mine),
+                   "result_sd": result["analysis"]["k_fd_N_per_mm_sd"]})
+print(json.dumps({"rows": len(rows), "points": points}))
+)";
+  std::FILE* p = ::popen(("/usr/bin/python3 " + script.string() + " " + csv.string() + " " + dir.string()).c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  ASSERT_EQ(::pclose(p), 0) << out;
+  const nlohmann::json py = nlohmann::json::parse(out);
+  EXPECT_EQ(py["rows"], 4);
+  for (const auto& point : py["points"]) {
+    EXPECT_EQ(point["reps"], nlohmann::json::array({"0", "1"}));
+    const double sd = point["sd"].get<double>(), want = point["result_sd"].get<double>();
+    EXPECT_GT(want, 0.0);
+    EXPECT_NEAR(sd, want, 1e-6 * want);
   }
   std::filesystem::remove_all(dir);
 }

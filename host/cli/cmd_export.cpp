@@ -1,0 +1,65 @@
+// palpctl export: a map or a result directory as one dataset file, without a device.
+//   export --format csv INPUT --out FILE   the tidy CSV (palp/tidy_csv.hpp, docs/result-format.md)
+// --format hdf5 is issue 22's other half and is refused until it exists.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "common.hpp"
+#include "palp/error.hpp"
+#include "palp/tidy_csv.hpp"
+
+namespace palpctl {
+
+namespace {
+
+struct ExportCli {
+  std::string format, input, out;
+  bool overwrite = false;
+};
+
+int export_command(const Context& ctx, const ExportCli& o) {
+  if (o.format == "hdf5")
+    throw palp::ConfigError("--format hdf5 is not available yet (HDF5 export is issue 22, not built); use --format csv");
+  if (o.format != "csv")
+    throw palp::ConfigError("--format " + o.format + ": unknown; the format there is: csv");
+  if (!o.overwrite && std::filesystem::exists(std::filesystem::symlink_status(o.out)))
+    throw palp::ConfigError(o.out + " already exists; choose another --out, or pass --overwrite to replace it");
+  const palp::TidyCsvExport e =
+      palp::export_tidy_csv(o.input, o.out, o.overwrite ? palp::Overwrite::yes : palp::Overwrite::no);
+  for (const std::string& d : e.damaged)
+    std::cerr << "palpctl: export: a damaged point (its row gives this in point_reason; the export went on): " << d
+              << "\n";
+  if (ctx.json) {
+    json damaged = json::array();
+    for (const std::string& d : e.damaged) damaged.push_back(d);
+    print_json({{"file", o.out}, {"format", "csv"}, {"rows", e.rows}, {"points", e.points}, {"damaged", damaged}});
+  } else {
+    std::cout << "wrote " << o.out << ": " << e.rows << " rows for " << e.points << " point"
+              << (e.points == 1 ? "" : "s") << (e.damaged.empty() ? "" : ", " + std::to_string(e.damaged.size()) + " damaged")
+              << "\n";
+  }
+  return kOk;
+}
+
+}  // namespace
+
+void add_export_command(CLI::App& app, Context& ctx) {
+  auto o = std::make_shared<ExportCli>();
+  auto* cmd = app.add_subcommand(
+      "export",
+      "Export a map directory (map.json, points/) or one result directory as a dataset file. "
+      "--format csv: one tidy table, a header line and one row per point and repetition (row, column, "
+      "rep, the position in mm, each repetition's stiffness and fit keys in lab units, a <key>_reason "
+      "beside every key that may be empty), that pandas.read_csv(f) or MATLAB readtable(f) read in "
+      "one line (docs/result-format.md \"The tidy CSV\"). A damaged point does not stop the export: "
+      "its row says why and palpctl names it on stderr. --format hdf5 is not available yet.");
+  cmd->add_option("--format", o->format, "csv (hdf5: not available yet)")->required();
+  cmd->add_option("input,--input", o->input, "The map's directory or a result directory")->required();
+  cmd->add_option("--out", o->out, "The file to write (atomically)")->required();
+  cmd->add_flag("--overwrite", o->overwrite, "Replace FILE when palp wrote it (a tidy CSV palp exported)");
+  cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return export_command(ctx, *o); }; });
+}
+
+}  // namespace palpctl
