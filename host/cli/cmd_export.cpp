@@ -1,12 +1,14 @@
 // palpctl export: a map or a result directory as one dataset file, without a device.
 //   export --format csv INPUT --out FILE   the tidy CSV (palp/tidy_csv.hpp, docs/result-format.md)
-// --format hdf5 is issue 22's other half and is refused until it exists.
+//   export --format hdf5 INPUT --out FILE  a recording or a result directory as one HDF5 file
+//                                          (palp/hdf5.hpp, docs/hdf5-format.md; export_hdf5.cpp)
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "common.hpp"
+#include "export_hdf5.hpp"
 #include "palp/error.hpp"
 #include "palp/tidy_csv.hpp"
 
@@ -20,10 +22,9 @@ struct ExportCli {
 };
 
 int export_command(const Context& ctx, const ExportCli& o) {
-  if (o.format == "hdf5")
-    throw palp::ConfigError("--format hdf5 is not available yet (HDF5 export is issue 22, not built); use --format csv");
+  if (o.format == "hdf5") return export_hdf5(ctx, o.input, o.out, o.overwrite);
   if (o.format != "csv")
-    throw palp::ConfigError("--format " + o.format + ": unknown; the format there is: csv");
+    throw palp::ConfigError("--format " + o.format + ": unknown; the formats there are: csv, hdf5");
   if (!o.overwrite && std::filesystem::exists(std::filesystem::symlink_status(o.out)))
     throw palp::ConfigError(o.out + " already exists; choose another --out, or pass --overwrite to replace it");
   const palp::TidyCsvExport e =
@@ -54,9 +55,10 @@ void add_export_command(CLI::App& app, Context& ctx) {
       "rep, the position in mm, each repetition's stiffness and fit keys in lab units, a <key>_reason "
       "beside every key that may be empty), that pandas.read_csv(f) or MATLAB readtable(f) read in "
       "one line (docs/result-format.md \"The tidy CSV\"). A damaged point does not stop the export: "
-      "its row says why and palpctl names it on stderr. --format hdf5 is not available yet.");
-  cmd->add_option("--format", o->format, "csv (hdf5: not available yet)")->required();
-  cmd->add_option("input,--input", o->input, "The map's directory or a result directory")->required();
+      "its row says why and palpctl names it on stderr. --format hdf5: a recording (run.csv or run.h5) or "
+      "a result directory as one HDF5 file (docs/hdf5-format.md; a map is not written yet).");
+  cmd->add_option("--format", o->format, "csv or hdf5")->required();
+  cmd->add_option("input,--input", o->input, "The map's directory or a result directory (hdf5: a result directory or a recording)")->required();
   cmd->add_option("--out", o->out, "The file to write (atomically)")->required();
   cmd->add_flag("--overwrite", o->overwrite, "Replace FILE when palp wrote it (a tidy CSV palp exported)");
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return export_command(ctx, *o); }; });

@@ -16,6 +16,9 @@
 
 #include "cli_process.hpp"
 #include "palp/tidy_csv.hpp"
+#ifdef PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "synth_map.hpp"
 
 namespace {
@@ -118,16 +121,48 @@ TEST_F(PalpctlExport, ADamagedPointIsNamedOnStderrItsRowSaysWhyAndAQuotedReasonR
   EXPECT_NEAR(py["k_fd"][2].get<double>(), 2.5, 0.05);  // r1_c3: 2.5 N/mm
 }
 
-TEST_F(PalpctlExport, Hdf5AndUnknownFormatsAreRefusedWithExit2AndNothingWritten) {
+#ifdef PALP_HAVE_HDF5
+TEST_F(PalpctlExport, Hdf5OfAResultAndOfARecordingReadsBackAsTheSameObjects) {
   palp::write_result(dir_ / "one", palp::test::synth_linear_run(1.5e3, 12e-3, 1));
-  const fs::path out = dir_ / "one.h5";
-  auto r = palpctl({"export", "--format", "hdf5", (dir_ / "one").string(), "--out", out.string()});
+  const palp::LoadedResult dir = palp::load_result(dir_ / "one");
+  auto r = palpctl({"--json", "export", "--format", "hdf5", (dir_ / "one").string(), "--out", (dir_ / "one.h5").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["content"], "result");
+  const palp::LoadedResult h5 = palp::read_result_hdf5(dir_ / "one.h5");
+  EXPECT_EQ(h5.summary, dir.summary);
+  ASSERT_EQ(h5.recordings.size(), 1u);
+  EXPECT_EQ(h5.recordings[0].second.z_mm, dir.recordings[0].second.z_mm);
+
+  const std::string csv = (dir_ / "one" / "indentation.csv").string();
+  r = palpctl({"export", "--format", "hdf5", csv, "--out", (dir_ / "rec.h5").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const palp::Recording back = palp::read_recording_hdf5(dir_ / "rec.h5");
+  EXPECT_EQ(back.i_A, palp::read_recording(csv).i_A);
+  EXPECT_EQ(palp::sidecar_to_json(*back.sidecar), palp::sidecar_to_json(*palp::read_recording(csv).sidecar));
+
+  // again without --overwrite: refused, the file kept
+  r = palpctl({"export", "--format", "hdf5", csv, "--out", (dir_ / "rec.h5").string()});
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err,
-            "palpctl: --format hdf5 is not available yet (HDF5 export is issue 22, not built); use --format csv\n");
-  r = palpctl({"export", "--format", "xlsx", (dir_ / "one").string(), "--out", out.string()});
+  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+}
+
+TEST_F(PalpctlExport, Hdf5OfAMapIsRefusedWithExit2AndNothingWritten) {
+  fs::create_directories(dir_ / "map");
+  std::ofstream(dir_ / "map" / "map.json") << "{}";
+  const fs::path out = dir_ / "map.h5";
+  const auto r = palpctl({"export", "--format", "hdf5", (dir_ / "map").string(), "--out", out.string()});
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "palpctl: --format xlsx: unknown; the format there is: csv\n");
+  EXPECT_NE(r.err.find("is a map; a map as one HDF5 file is not written yet"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+#endif
+
+TEST_F(PalpctlExport, UnknownFormatsAreRefusedWithExit2AndNothingWritten) {
+  palp::write_result(dir_ / "one", palp::test::synth_linear_run(1.5e3, 12e-3, 1));
+  const fs::path out = dir_ / "one.xlsx";
+  const auto r = palpctl({"export", "--format", "xlsx", (dir_ / "one").string(), "--out", out.string()});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "palpctl: --format xlsx: unknown; the formats there are: csv, hdf5\n");
   EXPECT_FALSE(fs::exists(out));
 }
 
