@@ -58,9 +58,14 @@ void add_export_command(CLI::App& app, Context& ctx) {
       "its row says why and palpctl names it on stderr. --format hdf5: a recording (run.csv or run.h5) or "
       "a result directory as one HDF5 file (docs/hdf5-format.md; a map is not written yet).");
   cmd->add_option("--format", o->format, "csv or hdf5")->required();
-  cmd->add_option("input,--input", o->input, "The map's directory or a result directory (hdf5: a result directory or a recording)")->required();
+  cmd->add_option("input,--input", o->input,
+                  "The map's directory or a result directory (hdf5: a result directory or a "
+                  "recording)")
+      ->required();
   cmd->add_option("--out", o->out, "The file to write (atomically)")->required();
-  cmd->add_flag("--overwrite", o->overwrite, "Replace FILE when palp wrote it (a tidy CSV palp exported)");
+  cmd->add_flag("--overwrite", o->overwrite,
+                "Replace --out's file when palp wrote it (a tidy CSV or an HDF5 file palp "
+                "exported); any other file is never replaced");
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return export_command(ctx, *o); }; });
 }
 
