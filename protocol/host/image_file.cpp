@@ -2,7 +2,9 @@
 #include "palp/protocol/image_file.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "palp/protocol/crc32.hpp"
@@ -175,7 +177,7 @@ ImageBytes read_image_file(const std::string& path, bool& file_error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     file_error = true;
-    out.error = "cannot open " + path;
+    out.error = "cannot open " + path + ": " + std::strerror(errno);
     return out;
   }
   std::vector<u8> bytes(kMaxImageFileBytes + 1);

@@ -3,11 +3,12 @@
 //   boot       the board's identity, the stored calibration (blank or bad: the core's defaults,
 //              never a silent replacement), then the tick at the default control rate;
 //   tick ISR   board.read_inputs -> watchdog clock -> controller.tick -> board.apply_outputs;
-//   main loop  link bytes -> (the board's stream rate for the link in use) -> controller.receive (which holds the tick through the board's
-//              hold_tick/release_tick while a command changes its state), a rate change -> the
-//              tick timer, controller.service every few ticks,
-//              controller.transmit -> link, a calibration commit -> board storage, a bootloader
-//              request -> the board once its Ack is on the wire; nothing to do -> board.idle.
+//   main loop  link bytes -> (the board's stream rate for the link in use) -> controller.receive
+//              (which holds the tick through the board's hold_tick/release_tick while a command
+//              changes its state), a rate change -> the tick timer, controller.service every
+//              few ticks, controller.transmit -> link, a calibration commit -> board storage,
+//              a bootloader request -> the board once its Ack is on the wire; nothing to do ->
+//              board.idle.
 //
 // One App per image (the board's interrupt reaches it through start_tick's handler). No heap:
 // construct it as a static object.
