@@ -1,5 +1,7 @@
 // palpctl monitor: live values a few times a second until Ctrl-C or --seconds. Each line is the
-// mean over the interval of the streamed samples, with the device's state and fault.
+// mean over the interval of the streamed samples, with the device's state and fault. With
+// --plot, the same stream goes to a live view in the browser instead (live_server.hpp: the
+// local HTTP server, live_page.hpp: the page, live_stream.hpp: the events it pushes).
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -9,6 +11,9 @@
 #include <vector>
 
 #include "common.hpp"
+#include "live_page.hpp"
+#include "live_server.hpp"
+#include "live_stream.hpp"
 
 namespace palpctl {
 
@@ -17,6 +22,25 @@ struct MonitorOptions {
   double seconds = 0;
   double interval_s = 0.25;
   double rate_Hz = 1000;
+  bool plot = false;
+  LiveServerOptions live;
+};
+
+// Stops the stream it was given on every way out of a monitor (the end, Ctrl-C, an error).
+class StreamRunning {
+ public:
+  explicit StreamRunning(palp::Probe& probe) : probe_(probe) { probe_.start_stream(); }
+  ~StreamRunning() {
+    try {
+      probe_.stop_stream();
+    } catch (const std::exception&) {  // the link is gone: there is no stream left to stop
+    }
+  }
+  StreamRunning(const StreamRunning&) = delete;
+  StreamRunning& operator=(const StreamRunning&) = delete;
+
+ private:
+  palp::Probe& probe_;
 };
 
 struct Means {
@@ -50,11 +74,43 @@ Means average(const std::vector<palp::StreamItem>& items) {
   return m;
 }
 
-int monitor(const Context& ctx, const MonitorOptions& o) {
+// --plot: the server listens (a refused --bind or a missing libjs-dygraphs ends palpctl before
+// the device is touched), then the stream starts and the URL is printed.
+int monitor_plot(const Context& ctx, const MonitorOptions& o) {
+  LiveServer server(o.live, live_page_html(load_dygraphs()));
   auto probe = ctx.connect();
   catch_interrupts();  // Ctrl-C ends the loop; the stream is stopped on the way out
   probe.configure_stream({.rate_Hz = o.rate_Hz});
-  probe.start_stream();
+  const StreamRunning stream(probe);
+  if (ctx.json)
+    print_json({{"url", server.url()}, {"port", server.port()}, {"events", server.url() + "events"}},
+               true);
+  else
+    std::printf("live view: %s (Ctrl-C ends it)\n", server.url().c_str());
+  std::fflush(stdout);
+  const LiveStreamTotals t = run_live_stream(probe, server, {.seconds = o.seconds, .rate_Hz = o.rate_Hz});
+  if (ctx.json)
+    print_json({{"seconds", t.seconds},
+                {"samples", t.samples},
+                {"samples_missing", t.samples_lost},
+                {"gaps", t.gaps},
+                {"pushes", t.pushes},
+                {"slow_clients_dropped", server.slow_clients_dropped()}},
+               true);
+  else
+    std::printf("live view ended after %.1f s: %llu samples, %llu lost in %llu gaps\n", t.seconds,
+                static_cast<unsigned long long>(t.samples),
+                static_cast<unsigned long long>(t.samples_lost),
+                static_cast<unsigned long long>(t.gaps));
+  return kOk;  // Ctrl-C is how a monitor normally ends
+}
+
+int monitor(const Context& ctx, const MonitorOptions& o) {
+  if (o.plot) return monitor_plot(ctx, o);
+  auto probe = ctx.connect();
+  catch_interrupts();  // Ctrl-C ends the loop; the stream is stopped on the way out
+  probe.configure_stream({.rate_Hz = o.rate_Hz});
+  const StreamRunning stream(probe);
   if (!ctx.json)
     std::printf("%10s %-9s %-14s %8s %8s %9s %8s %8s %8s %8s %8s %8s\n", "t_device_s", "state",
                 "fault", "i_cmd_A", "i_A", "z_mm", "p1_Pa", "p2_Pa", "p3_Pa", "p4_Pa", "p5_Pa",
@@ -97,7 +153,6 @@ int monitor(const Context& ctx, const MonitorOptions& o) {
         std::chrono::steady_clock::now() - t0 >= std::chrono::duration<double>(o.seconds))
       break;
   }
-  probe.stop_stream();
   return kOk;  // Ctrl-C is how a monitor normally ends
 }
 }  // namespace
@@ -106,7 +161,11 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
   auto o = std::make_shared<MonitorOptions>();
   auto* cmd = app.add_subcommand(
       "monitor", "Print live values (means over each interval: i_cmd_A, i_A, z_mm, p1..p6_Pa, "
-                 "state, fault) until Ctrl-C or --seconds; --json prints one object per line");
+                 "state, fault) until Ctrl-C or --seconds; --json prints one object per line.\n"
+                 "--plot: a live view in the browser instead (plots of i_cmd, i, z, p1..p6 at "
+                 "30 pushes/s, pause, last N s, gap and fault markers); palpctl prints the URL "
+                 "to open (with --json as {\"url\": ...}). It serves 127.0.0.1 only, unless "
+                 "--bind and --allow-remote say otherwise. Needs Debian's libjs-dygraphs.");
   cmd->add_option("--seconds", o->seconds, "Stop after this long, s (0: until Ctrl-C)")
       ->check(kNonNegative)
       ->capture_default_str();
@@ -117,6 +176,19 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
                   "Stream sample rate the means are taken over, Hz (divides the control rate)")
       ->check(kPositive)
       ->capture_default_str();
+  auto* plot = cmd->add_flag("--plot", o->plot,
+                             "Serve a live view in the browser (GET / the page, GET /events the "
+                             "server-sent events) instead of printing lines");
+  cmd->add_option("--port", o->live.port, "The live view's TCP port (0: any free port)")
+      ->capture_default_str()
+      ->needs(plot);
+  cmd->add_option("--bind", o->live.bind_address,
+                  "The live view's IPv4 address; one outside 127.0.0.0/8 needs --allow-remote")
+      ->capture_default_str()
+      ->needs(plot);
+  cmd->add_flag("--allow-remote", o->live.allow_remote,
+                "Allow a --bind address other than loopback (the page has no authentication)")
+      ->needs(plot);
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return monitor(ctx, *o); }; });
 }
 
