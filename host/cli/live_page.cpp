@@ -1,5 +1,7 @@
 #include "live_page.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <string_view>
 
@@ -11,12 +13,18 @@ namespace palpctl {
 namespace {
 constexpr std::size_t kMaxDygraphsFileBytes = 4u << 20;
 
-// Text for inlining into <script> / <style>: no "</" that could end the element early (in
-// JavaScript "<\/" is the same string), and no source-map comment pointing at a file the page
-// cannot fetch.
+// Text for inlining into <script> or <style>: no "</script" or "</style" that would end the element
+// early (where one could stand, in a string, "<\/" is the same text; checked case-blind, as HTML
+// does), and no source-map comment pointing at a file the page cannot fetch.
 std::string inlinable(std::string text) {
-  for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3)
-    text.replace(at, 2, "<\\/");
+  const auto lower = [](char c) {
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  };
+  for (const std::string_view end : {std::string_view("</script"), std::string_view("</style")})
+    for (std::size_t at = 0; at + end.size() <= text.size(); ++at)
+      if (std::equal(end.begin(), end.end(), text.begin() + static_cast<std::ptrdiff_t>(at),
+                     [&](char a, char b) { return a == lower(b); }))
+        text.replace(at, 2, "<\\/");
   for (const char* marker : {"//# sourceMappingURL=", "/*# sourceMappingURL="}) {
     const auto at = text.find(marker);
     if (at != std::string::npos) text.erase(at, text.find('\n', at) - at);
@@ -28,6 +36,7 @@ std::string inlinable(std::string text) {
 constexpr std::string_view kPage = R"PAGE(<!doctype html>
 <html lang="en"><head><meta charset="utf-8">
 <title>palp live view</title>
+<link rel="icon" href="data:,">
 <style>%CSS%</style>
 <style>
   html, body { margin: 0; background: #101418; color: #d8dee6;
@@ -46,10 +55,13 @@ constexpr std::string_view kPage = R"PAGE(<!doctype html>
   .panel .legend { position: absolute; top: 2px; left: 84px; z-index: 20;
                    font-family: "DejaVu Sans Mono", monospace; font-size: 12px; color: #c9d1d9; }
   .panel .legend span { margin-right: 12px; }
-  .plot { width: 100%; height: 250px; }
+  .panel .readout { position: absolute; top: 2px; right: 12px; z-index: 20; text-align: right;
+                    font-family: "DejaVu Sans Mono", monospace; font-size: 12px; }
+  .panel .readout span { margin-left: 14px; }
+  .plot { width: 100%; height: calc((100vh - 130px) / 3); min-height: 170px; }
   .waiting { color: #7d8590; padding: 100px 0 0 120px; }
   #markers { font-family: "DejaVu Sans Mono", monospace; font-size: 12px; color: #9aa5b1;
-             padding: 4px 16px; height: 40px; overflow: auto; }
+             padding: 2px 16px; height: 32px; overflow: auto; }
   .dygraph-axis-label { color: #aeb8c4; font-size: 12px; }
   .dygraph-label { color: #d8dee6; font-size: 13px; }
   .dygraph-legend { background: transparent; width: auto; }
@@ -66,11 +78,11 @@ constexpr std::string_view kPage = R"PAGE(<!doctype html>
   <button id="pause" type="button">Pause</button>
 </header>
 <main>
-  <div class="panel"><div class="legend" id="legend-current"></div>
+  <div class="panel"><div class="legend" id="legend-current"></div><div class="readout" id="readout-current"></div>
     <div class="plot" id="plot-current"><div class="waiting">waiting for samples&hellip;</div></div></div>
-  <div class="panel"><div class="legend" id="legend-z"></div>
+  <div class="panel"><div class="legend" id="legend-z"></div><div class="readout" id="readout-z"></div>
     <div class="plot" id="plot-z"></div></div>
-  <div class="panel"><div class="legend" id="legend-p"></div>
+  <div class="panel"><div class="legend" id="legend-p"></div><div class="readout" id="readout-p"></div>
     <div class="plot" id="plot-p"></div></div>
 </main>
 <div id="markers"></div>
@@ -82,15 +94,17 @@ const L = window.palpLive = {sampleMessages: 0, points: 0, redraws: 0, paused: f
                              windowS: 10, markers: [], markersDrawn: 0, status: null,
                              connected: false, viewHz: 0};
 const PANELS = [
-  {id: 'current', ylabel: 'current (A)', names: ['i_cmd (A)', 'i (A)'],
+  {id: 'current', ylabel: 'current (A)', names: ['i_cmd (A)', 'i (A)'], digits: 4,
    colors: ['#f2cc60', '#56d4f5'], pick: (m, k) => [m.i_cmd_A[k], m.i_A[k]]},
-  {id: 'z', ylabel: 'position z (mm)', names: ['z (mm)'],
+  {id: 'z', ylabel: 'position z (mm)', names: ['z (mm)'], digits: 4,
    colors: ['#7ee787'], pick: (m, k) => [m.z_mm[k]]},
   {id: 'p', ylabel: 'pressure (Pa)', names: ['p1', 'p2', 'p3', 'p4', 'p5', 'p6'].map(n => n + ' (Pa)'),
+   digits: 1,
    colors: ['#ff7b72', '#ffa657', '#f2cc60', '#7ee787', '#79c0ff', '#d2a8ff'],
    pick: (m, k) => m.p_Pa.map(col => col[k])},
 ];
 for (const P of PANELS) P.rows = [];
+L.panels = PANELS;  // each panel's rows: [t_s, values...] as plotted
 const MARK_COLOURS = {gap: '#ffa657', fault: '#ff4d4d', state: '#8b949e'};
 
 function drawMarkers(ctx, area, g, labels) {
@@ -104,10 +118,14 @@ function drawMarkers(ctx, area, g, labels) {
     ctx.lineWidth = m.kind === 'fault' ? 2.5 : 1.5;
     ctx.setLineDash(m.kind === 'gap' ? [6, 4] : m.kind === 'state' ? [2, 3] : []);
     ctx.beginPath(); ctx.moveTo(x, area.y); ctx.lineTo(x, area.y + area.h); ctx.stroke();
-    if (labels) {
-      ctx.fillStyle = MARK_COLOURS[m.kind];
+    if (labels) {  // gap labels at the bottom, fault and state labels at the top: both readable
       ctx.font = '12px "DejaVu Sans", sans-serif';
-      ctx.fillText(m.label, x + 4, area.y + area.h - 6);
+      const y = m.kind === 'gap' ? area.y + area.h - 8 : area.y + 30;
+      const w = ctx.measureText(m.label).width;
+      ctx.fillStyle = 'rgba(16, 20, 24, 0.85)';
+      ctx.fillRect(x + 3, y - 12, w + 4, 16);
+      ctx.fillStyle = MARK_COLOURS[m.kind];
+      ctx.fillText(m.label, x + 5, y);
     }
     ctx.restore();
     ++drawn;
@@ -122,9 +140,9 @@ function makeGraph(P, first) {
     labels: ['t (s)'].concat(P.names), colors: P.colors, ylabel: P.ylabel,
     xlabel: P.id === 'p' ? 'device time (s)' : undefined, xLabelHeight: 16, yLabelWidth: 18,
     legend: 'always', labelsDiv: 'legend-' + P.id, labelsSeparateLines: false,
-    strokeWidth: 1.4, gridLineColor: '#2c3540', axisLineColor: '#6e7681',
+    strokeWidth: 1.4, yRangePad: 8, gridLineColor: '#2c3540', axisLineColor: '#6e7681',
     axisLabelFontSize: 12, drawAxesAtZero: false, connectSeparatedPoints: false,
-    digitsAfterDecimal: P.id === 'z' ? 4 : P.id === 'p' ? 1 : 4,
+    digitsAfterDecimal: P.digits,
     axes: {x: {axisLabelFormatter: v => v.toFixed(1), valueFormatter: v => 't ' + v.toFixed(3) + ' s'},
            y: {axisLabelWidth: 62}},
     interactionModel: {},  // no zoom by drag: the window selector sets the range
@@ -132,12 +150,29 @@ function makeGraph(P, first) {
   });
 }
 
+// The newest values as a scope's measurement readout: the mean over the last 0.1 s of points.
+function showReadout(P) {
+  const recent = [];
+  const tEnd = P.rows[P.rows.length - 1][0];
+  for (let k = P.rows.length - 1; k >= 0 && P.rows[k][0] > tEnd - 0.1; --k) recent.push(P.rows[k]);
+  const html = P.names.map((name, c) => {
+    const v = recent.map(r => r[c + 1]).filter(x => x !== null);
+    const mean = v.length ? (v.reduce((a, b) => a + b, 0) / v.length).toFixed(P.digits) : '\u2013';
+    const [label, unit] = name.split(' ');
+    return `<span style="color:${P.colors[c]}">${label} ${mean} ${unit.slice(1, -1)}</span>`;
+  });
+  document.getElementById('readout-' + P.id).innerHTML = html.join('');
+}
+
+window.addEventListener('resize', () => PANELS.forEach(P => P.graph && P.graph.resize()));
+
 let scheduled = false;
 function redraw() {
   scheduled = false;
   if (L.paused || PANELS[0].rows.length === 0) return;
   const rows = PANELS[0].rows;
-  const tMax = rows[rows.length - 1][0];
+  // a scope's sweep: the trace fills the window from the left, then scrolls
+  const tMax = Math.max(rows[rows.length - 1][0], rows[0][0] + L.windowS);
   const t0 = tMax - L.windowS;
   PANELS.forEach((P, n) => {
     let lo = 0, hi = P.rows.length;  // first row with t >= t0
@@ -145,11 +180,14 @@ function redraw() {
     const file = P.rows.slice(Math.max(0, lo - 1));
     if (!P.graph) makeGraph(P, n === 0);
     P.graph.updateOptions({file, dateWindow: [t0, tMax]});
+    showReadout(P);
   });
   ++L.redraws;
 }
 function schedule() {
-  if (!scheduled && !L.paused) { scheduled = true; requestAnimationFrame(redraw); }
+  // a timer, not requestAnimationFrame: a tab in the background (or a headless one) still
+  // follows the stream, and the pushes (30 a second) already pace the redraws
+  if (!scheduled && !L.paused) { scheduled = true; setTimeout(redraw, 0); }
 }
 
 function forgetOld() {
@@ -214,7 +252,7 @@ es.addEventListener('gap', e => {
 });
 es.addEventListener('state', e => {
   const s = JSON.parse(e.data);
-  if (s.fault !== 'none' && s.fault !== s.previous_fault) addMarker('fault', s.t_device_s, 'fault ' + s.fault);
+  if (s.fault !== 'none' && s.fault !== s.previous_fault) addMarker('fault', s.t_device_s, s.fault);
   else addMarker('state', s.t_device_s, `${s.previous_state} \u2192 ${s.state}`);
 });
 es.addEventListener('status', e => { L.status = JSON.parse(e.data); showStatus(); });

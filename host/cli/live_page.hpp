@@ -9,7 +9,8 @@
 // refresh rate). The events it reads are documented in live_stream.hpp.
 //
 // For tests and the curious, window.palpLive holds the page's counters: sampleMessages,
-// points, redraws, paused, markers ([{kind, t_s, label}]), markersDrawn, status.
+// points, redraws, paused, markers ([{kind, t_s, label}]), markersDrawn, status, viewHz, and
+// panels (current, z, p: each with rows [[t_s, values...]] as plotted).
 #pragma once
 
 #include <string>
