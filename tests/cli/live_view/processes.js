@@ -48,6 +48,15 @@ function control(sim, line) {
   });
 }
 
+/// Resolves once palp-sim has seen its device client go (it serves one at a time).
+async function waitNoClient(sim, timeoutMs = 5000) {
+  const end = Date.now() + timeoutMs;
+  while (!(await control(sim, 'status')).includes(' client=0 ')) {
+    if (Date.now() > end) throw new Error('palp-sim still holds its client');
+    await new Promise(r => setTimeout(r, 20));
+  }
+}
+
 /// palpctl monitor --plot --json --port 0 [extra] against sim; resolves with {proc, url} once
 /// it printed its URL line.
 async function startMonitor(sim, extra = []) {
@@ -55,7 +64,7 @@ async function startMonitor(sim, extra = []) {
                                ...extra], {stdio: ['ignore', 'pipe', 'pipe']});
   const line = await firstLine(proc, 'palpctl monitor --plot');
   const j = JSON.parse(line);
-  if (!/^http:\/\/127\.0\.0\.1:\d+\/$/.test(j.url)) throw new Error(`not a URL line: ${line}`);
+  if (!/^http:\/\/[\d.]+:\d+\/$/.test(j.url)) throw new Error(`not a URL line: ${line}`);
   return {proc, url: j.url, port: j.port};
 }
 
@@ -78,10 +87,11 @@ function rawRequest(port, request, timeoutMs = 5000) {
   });
 }
 
-/// palpctl with arguments to its end: {code, out, err}.
-function runPalpctl(args) {
+/// palpctl with arguments (and environment variables added) to its end: {code, out, err}.
+function runPalpctl(args, env = {}) {
   return new Promise(resolve => {
-    const p = spawn(PALPCTL, args, {stdio: ['ignore', 'pipe', 'pipe']});
+    const p = spawn(PALPCTL, args, {stdio: ['ignore', 'pipe', 'pipe'],
+                                    env: Object.assign({}, process.env, env)});
     let out = '', err = '';
     p.stdout.on('data', d => { out += d; });
     p.stderr.on('data', d => { err += d; });
@@ -89,4 +99,4 @@ function runPalpctl(args) {
   });
 }
 
-module.exports = {startSim, control, startMonitor, stop, rawRequest, runPalpctl};
+module.exports = {startSim, control, waitNoClient, startMonitor, stop, rawRequest, runPalpctl};
