@@ -23,6 +23,7 @@ struct MonitorOptions {
   double interval_s = 0.25;
   double rate_Hz = 1000;
   bool plot = false;
+  int port = 0;  // checked 0..65535, then live.port
   LiveServerOptions live;
 };
 
@@ -77,7 +78,9 @@ Means average(const std::vector<palp::StreamItem>& items) {
 // --plot: the server listens (a refused --bind or a missing libjs-dygraphs ends palpctl before
 // the device is touched), then the stream starts and the URL is printed.
 int monitor_plot(const Context& ctx, const MonitorOptions& o) {
-  LiveServer server(o.live, live_page_html(load_dygraphs()));
+  LiveServerOptions live = o.live;
+  live.port = static_cast<std::uint16_t>(o.port);
+  LiveServer server(live, live_page_html(load_dygraphs()));
   auto probe = ctx.connect();
   catch_interrupts();  // Ctrl-C ends the loop; the stream is stopped on the way out
   probe.configure_stream({.rate_Hz = o.rate_Hz});
@@ -162,8 +165,9 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand(
       "monitor", "Print live values (means over each interval: i_cmd_A, i_A, z_mm, p1..p6_Pa, "
                  "state, fault) until Ctrl-C or --seconds; --json prints one object per line.\n"
-                 "--plot: a live view in the browser instead (plots of i_cmd, i, z, p1..p6 at "
-                 "30 pushes/s, pause, last N s, gap and fault markers); palpctl prints the URL "
+                 "--plot: a live view in the browser instead (plots of i_cmd, i, z, p1..p6 at " +
+                 fmt(kPushHz) +
+                 " pushes/s, pause, last N s, gap and fault markers); palpctl prints the URL "
                  "to open (with --json as {\"url\": ...}). It serves 127.0.0.1 only, unless "
                  "--bind and --allow-remote say otherwise. Needs Debian's libjs-dygraphs.");
   cmd->add_option("--seconds", o->seconds, "Stop after this long, s (0: until Ctrl-C)")
@@ -179,7 +183,8 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
   auto* plot = cmd->add_flag("--plot", o->plot,
                              "Serve a live view in the browser (GET / the page, GET /events the "
                              "server-sent events) instead of printing lines");
-  cmd->add_option("--port", o->live.port, "The live view's TCP port (0: any free port)")
+  cmd->add_option("--port", o->port, "The live view's TCP port (0: any free port)")
+      ->check(CLI::Range(0, 65535))
       ->capture_default_str()
       ->needs(plot);
   cmd->add_option("--bind", o->live.bind_address,

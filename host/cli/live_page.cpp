@@ -63,7 +63,7 @@ constexpr std::string_view kPage = R"PAGE(<!doctype html>
   #markers { font-family: "DejaVu Sans Mono", monospace; font-size: 12px; color: #9aa5b1;
              padding: 2px 16px; height: 32px; overflow: auto; }
   .dygraph-axis-label { color: #aeb8c4; font-size: 12px; }
-  .dygraph-label { color: #d8dee6; font-size: 13px; }
+  .dygraph-label, .dygraph-ylabel, .dygraph-xlabel { color: #d8dee6; font-size: 13px; }
   .dygraph-legend { background: transparent; width: auto; }
 </style></head>
 <body>
@@ -158,8 +158,9 @@ function showReadout(P) {
   const html = P.names.map((name, c) => {
     const v = recent.map(r => r[c + 1]).filter(x => x !== null);
     const mean = v.length ? (v.reduce((a, b) => a + b, 0) / v.length).toFixed(P.digits) : '\u2013';
+    const shown = /^-0\.?0*$/.test(mean) ? mean.slice(1) : mean;  // no "-0.0"
     const [label, unit] = name.split(' ');
-    return `<span style="color:${P.colors[c]}">${label} ${mean} ${unit.slice(1, -1)}</span>`;
+    return `<span style="color:${P.colors[c]}">${label} ${shown} ${unit.slice(1, -1)}</span>`;
   });
   document.getElementById('readout-' + P.id).innerHTML = html.join('');
 }
@@ -209,6 +210,11 @@ function forgetOld() {
 const pushTimes = [];
 function onSamples(m) {
   ++L.sampleMessages;
+  const last = PANELS[0].rows.length ? PANELS[0].rows[PANELS[0].rows.length - 1][0] : -Infinity;
+  if (m.t_s.length > 0 && m.t_s[0] < last) {  // the device's clock restarted: start afresh
+    for (const P of PANELS) P.rows.length = 0;
+    L.markers = [];
+  }
   const now = performance.now();
   pushTimes.push(now);
   while (pushTimes.length > 0 && pushTimes[0] < now - 1000) pushTimes.shift();
