@@ -86,12 +86,14 @@ int monitor_plot(const Context& ctx, const MonitorOptions& o) {
   probe.configure_stream({.rate_Hz = o.rate_Hz});
   const StreamRunning stream(probe);
   if (ctx.json)
-    print_json({{"url", server.url()}, {"port", server.port()}, {"events", server.url() + "events"}},
-               true);
+    print_json(
+        {{"url", server.url()}, {"port", server.port()}, {"events", server.url() + "events"}},
+        true);
   else
     std::printf("live view: %s (Ctrl-C ends it)\n", server.url().c_str());
   std::fflush(stdout);
-  const LiveStreamTotals t = run_live_stream(probe, server, {.seconds = o.seconds, .rate_Hz = o.rate_Hz});
+  const LiveStreamTotals t =
+      run_live_stream(probe, server, {.seconds = o.seconds, .rate_Hz = o.rate_Hz});
   if (ctx.json)
     print_json({{"seconds", t.seconds},
                 {"samples", t.samples},
@@ -173,7 +175,7 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--seconds", o->seconds, "Stop after this long, s (0: until Ctrl-C)")
       ->check(kNonNegative)
       ->capture_default_str();
-  cmd->add_option("--interval-s", o->interval_s, "Time between lines, s")
+  auto* interval = cmd->add_option("--interval-s", o->interval_s, "Time between lines, s")
       ->check(CLI::Range(0.05, 60.0))
       ->capture_default_str();
   cmd->add_option("--rate-Hz", o->rate_Hz,
@@ -182,7 +184,8 @@ void add_monitor_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   auto* plot = cmd->add_flag("--plot", o->plot,
                              "Serve a live view in the browser (GET / the page, GET /events the "
-                             "server-sent events) instead of printing lines");
+                             "server-sent events) instead of printing lines")
+                   ->excludes(interval);  // the page is refreshed at its own rate
   cmd->add_option("--port", o->port, "The live view's TCP port (0: any free port)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str()

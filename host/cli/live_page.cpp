@@ -78,11 +78,15 @@ constexpr std::string_view kPage = R"PAGE(<!doctype html>
   <button id="pause" type="button">Pause</button>
 </header>
 <main>
-  <div class="panel"><div class="legend" id="legend-current"></div><div class="readout" id="readout-current"></div>
-    <div class="plot" id="plot-current"><div class="waiting">waiting for samples&hellip;</div></div></div>
-  <div class="panel"><div class="legend" id="legend-z"></div><div class="readout" id="readout-z"></div>
+  <div class="panel">
+    <div class="legend" id="legend-current"></div><div class="readout" id="readout-current"></div>
+    <div class="plot" id="plot-current"><div class="waiting">waiting for samples&hellip;</div></div>
+  </div>
+  <div class="panel">
+    <div class="legend" id="legend-z"></div><div class="readout" id="readout-z"></div>
     <div class="plot" id="plot-z"></div></div>
-  <div class="panel"><div class="legend" id="legend-p"></div><div class="readout" id="readout-p"></div>
+  <div class="panel">
+    <div class="legend" id="legend-p"></div><div class="readout" id="readout-p"></div>
     <div class="plot" id="plot-p"></div></div>
 </main>
 <div id="markers"></div>
@@ -98,7 +102,8 @@ const PANELS = [
    colors: ['#f2cc60', '#56d4f5'], pick: (m, k) => [m.i_cmd_A[k], m.i_A[k]]},
   {id: 'z', ylabel: 'position z (mm)', names: ['z (mm)'], digits: 4,
    colors: ['#7ee787'], pick: (m, k) => [m.z_mm[k]]},
-  {id: 'p', ylabel: 'pressure (Pa)', names: ['p1', 'p2', 'p3', 'p4', 'p5', 'p6'].map(n => n + ' (Pa)'),
+  {id: 'p', ylabel: 'pressure (Pa)',
+   names: ['p1', 'p2', 'p3', 'p4', 'p5', 'p6'].map(n => n + ' (Pa)'),
    digits: 1,
    colors: ['#ff7b72', '#ffa657', '#f2cc60', '#7ee787', '#79c0ff', '#d2a8ff'],
    pick: (m, k) => m.p_Pa.map(col => col[k])},
@@ -143,7 +148,8 @@ function makeGraph(P, first) {
     strokeWidth: 1.4, yRangePad: 8, gridLineColor: '#2c3540', axisLineColor: '#6e7681',
     axisLabelFontSize: 12, drawAxesAtZero: false, connectSeparatedPoints: false,
     digitsAfterDecimal: P.digits,
-    axes: {x: {axisLabelFormatter: v => v.toFixed(1), valueFormatter: v => 't ' + v.toFixed(3) + ' s'},
+    axes: {x: {axisLabelFormatter: v => v.toFixed(1),
+               valueFormatter: v => 't ' + v.toFixed(3) + ' s'},
            y: {axisLabelWidth: 62}},
     interactionModel: {},  // no zoom by drag: the window selector sets the range
     underlayCallback: (ctx, area, g) => drawMarkers(ctx, area, g, first),
@@ -177,7 +183,10 @@ function redraw() {
   const t0 = tMax - L.windowS;
   PANELS.forEach((P, n) => {
     let lo = 0, hi = P.rows.length;  // first row with t >= t0
-    while (lo < hi) { const mid = (lo + hi) >> 1; if (P.rows[mid][0] < t0) lo = mid + 1; else hi = mid; }
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (P.rows[mid][0] < t0) lo = mid + 1; else hi = mid;
+    }
     const file = P.rows.slice(Math.max(0, lo - 1));
     if (!P.graph) makeGraph(P, n === 0);
     P.graph.updateOptions({file, dateWindow: [t0, tMax]});
@@ -239,12 +248,15 @@ function addMarker(kind, t_s, label) {
 function showStatus() {
   const s = L.status;
   if (!s) return;
-  const fault = s.fault === 'none' ? `<span class="ok">none</span>` : `<span class="bad">${s.fault}</span>`;
+  const fault = s.fault === 'none' ? `<span class="ok">none</span>`
+                                    : `<span class="bad">${s.fault}</span>`;
   const lost = s.samples_lost > 0 ? `<span class="bad">${s.samples_lost}</span>` : '0';
   document.getElementById('status').innerHTML =
-    `state <b>${s.state}</b> &middot; fault ${fault} &middot; ${s.samples_per_s.toFixed(0)} samples/s` +
+    `state <b>${s.state}</b> &middot; fault ${fault}` +
+    ` &middot; ${s.samples_per_s.toFixed(0)} samples/s` +
     ` &middot; lost ${lost} in ${s.gaps} gaps &middot; t ${s.t_device_s.toFixed(1)} s` +
-    ` &middot; view ${L.viewHz} Hz${L.connected ? '' : ' &middot; <span class="bad">disconnected</span>'}` +
+    ` &middot; view ${L.viewHz} Hz` +
+    (L.connected ? '' : ' &middot; <span class="bad">disconnected</span>') +
     (L.paused ? ' &middot; <span class="bad">paused</span>' : '');
 }
 
@@ -289,11 +301,12 @@ DygraphsFiles load_dygraphs() {
   const std::string dir = dygraphs_dir();
   const auto read = [&](const char* name) {
     const std::string path = dir + "/" + name;
-    return palp::format::read_bounded_or(path, kMaxDygraphsFileBytes, [&](const std::string& problem) {
+    const auto fail = [&](const std::string& problem) {
       throw palp::Error("live view: " + path + ": " + problem +
                         " (the page's plots need Debian's libjs-dygraphs: apt-get install "
                         "libjs-dygraphs, or scripts/install-deps)");
-    });
+    };
+    return palp::format::read_bounded_or(path, kMaxDygraphsFileBytes, fail);
   };
   return {read("dygraph.min.js"), read("dygraph.min.css")};
 }

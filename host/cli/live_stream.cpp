@@ -148,7 +148,7 @@ LiveStreamTotals run_live_stream(palp::Probe& probe, LiveServer& server,
                                       .dump());
       last = st;
       have_status = true;
-      std::uint64_t in_window = 0;
+      std::uint64_t in_window = 0;  // the samples of the pushes after the first in recent
       for (std::size_t k = 1; k < recent.size(); ++k) in_window += recent[k].second;
       const double span =
           std::chrono::duration<double>(recent.back().first - recent.front().first).count();
@@ -157,7 +157,8 @@ LiveStreamTotals run_live_stream(palp::Probe& probe, LiveServer& server,
                             {"state", name_of(st.state)},
                             {"fault", name_of(st.fault)},
                             {"program", name_of(st.program)},
-                            {"samples_per_s", span > 0 ? static_cast<double>(in_window) / span : 0.0},
+                            {"samples_per_s",
+                             span > 0 ? static_cast<double>(in_window) / span : 0.0},
                             {"samples_lost", totals.samples_lost},
                             {"gaps", totals.gaps},
                             {"rate_Hz", o.rate_Hz},

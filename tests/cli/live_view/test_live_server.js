@@ -6,7 +6,8 @@
 // Run: node test_live_server.js PALPCTL PALP_SIM
 'use strict';
 const assert = require('assert');
-const {startSim, waitNoClient, startMonitor, stop, rawRequest, runPalpctl} = require('./processes.js');
+const {startSim, waitNoClient, startMonitor, stop, rawRequest, runPalpctl} =
+    require('./processes.js');
 
 const UNREACHABLE = 'sim://127.0.0.1:1';  // refusals must come before any connection attempt
 
@@ -81,7 +82,8 @@ function countEvents(port, ms) {
 
     // --seconds ends it too; without --json the URL and the summary are lines of text
     await waitNoClient(sim);
-    r = await runPalpctl(['monitor', '--plot', '--port', '0', '--seconds', '0.5', '--uri', sim.uri]);
+    r = await runPalpctl(['monitor', '--plot', '--port', '0', '--seconds', '0.5',
+                          '--uri', sim.uri]);
     assert.strictEqual(r.code, 0, r.err);
     assert.match(r.out, /^live view: http:\/\/127\.0\.0\.1:\d+\/ \(Ctrl-C ends it\)\n/);
     assert.match(r.out, /\nlive view ended after 0\.\d s: \d+ samples, 0 lost in 0 gaps\n$/);

@@ -44,7 +44,8 @@ const sleep = ms => new Promise(r => setTimeout(r, ms));
     // refresh: samples events counted in the page over 2 s (palpctl pushes 30 a second)
     const perS = await page.evaluate(`new Promise(done => {
       const n0 = palpLive.sampleMessages, t0 = performance.now();
-      setTimeout(() => done((palpLive.sampleMessages - n0) * 1000 / (performance.now() - t0)), 2000);
+      setTimeout(() => done((palpLive.sampleMessages - n0) * 1000 / (performance.now() - t0)),
+                 2000);
     })`);
     assert.ok(perS >= 20, `${perS.toFixed(1)} samples events/s in the page, want >= 20`);
 
