@@ -56,12 +56,14 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--overwrite", "--reps",          "--no-unload",     "--cycles",       "--settle-cycles",
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
       "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
-      "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format"};
+      "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format",
+      "--plot", "--port", "--bind", "--allow-remote"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
       {{"info"}, {}},
-      {{"monitor"}, {"--seconds", "--interval-s", "--rate-Hz"}},
+      {{"monitor"},
+       {"--seconds", "--interval-s", "--rate-Hz", "--plot", "--port", "--bind", "--allow-remote"}},
       {{"stream"}, {"--seconds", "--out", "--rate-Hz", "--zero-pressure", "--zero-current"}},
       {{"run"}, {}},
       {{"run", "hold"}, {"--current-A", "--seconds", "--out", "--rate-Hz"}},
