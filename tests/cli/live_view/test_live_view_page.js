@@ -48,6 +48,7 @@ const sleep = ms => new Promise(r => setTimeout(r, ms));
                  2000);
     })`);
     assert.ok(perS >= 20, `${perS.toFixed(1)} samples events/s in the page, want >= 20`);
+    console.log(`the page received ${perS.toFixed(1)} samples events/s`);
 
     // Pause: the plots stop redrawing while the data keeps arriving; Resume redraws
     await page.click('#pause');
