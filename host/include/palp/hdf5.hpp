@@ -1,6 +1,7 @@
-// Recordings and result directories as HDF5 files (issue 22): one self-describing binary file a
-// lab opens in Python (h5py), MATLAB (h5read) or HDFView without palp. The layout, for people and
-// other programs, is docs/hdf5-format.md; this header is the SDK's side of it.
+// Recordings, result directories, maps and identifications as HDF5 files (issue 22): one
+// self-describing binary file a lab opens in Python (h5py), MATLAB (h5read) or HDFView without
+// palp. The layout, for people and other programs, is docs/hdf5-format.md; this header is the
+// SDK's side of it.
 //
 //   palp::write_recording_hdf5("run.h5", palp::read_recording("run.csv"));
 //   palp::Recording r = palp::read_recording_hdf5("run.h5");     // the same Recording again
@@ -8,6 +9,11 @@
 //   palp::write_result_hdf5("solid-p3.h5", palp::load_result("results/solid-p3"));
 //   palp::LoadedResult res = palp::read_result_hdf5("solid-p3.h5");
 //   palp::IndentationRun again = palp::indentation_run_of(res);  // re-analysable, as from the dir
+//
+//   palp::write_map_hdf5("pad-map.h5", palp::load_map_results("results/pad-map"));
+//   palp::LoadedMap m = palp::read_map_hdf5("pad-map.h5");       // map.json and every point's result
+//
+//   palp::write_identification_hdf5("sweep.h5", palp::identification_of(palp::load_result("results/sweep")));
 //
 // The samples are typed columns (float64, uint64, uint16, int32), chunked and deflate-compressed,
 // each with a `unit` attribute in the recording's lab units (s, A, mm, Pa; "1" for indices,
@@ -34,6 +40,12 @@
 #include <string>
 #include <string_view>
 
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "palp/analysis/frf.hpp"
+#include "palp/map.hpp"
 #include "palp/recording.hpp"
 #include "palp/result.hpp"
 
@@ -45,6 +57,8 @@ inline constexpr std::string_view kHdf5Format = "palp.hdf5/1";
 /// What a palp HDF5 file holds: its root attribute `content`.
 inline constexpr std::string_view kHdf5ContentRecording = "recording";
 inline constexpr std::string_view kHdf5ContentResult = "result";
+inline constexpr std::string_view kHdf5ContentMap = "map";
+inline constexpr std::string_view kHdf5ContentIdentification = "identification";
 
 /// Whether a file starts with HDF5's signature (\x89HDF\r\n\x1a\n): how palpctl tells an .h5 input
 /// from a CSV. False for a file that cannot be read.
@@ -69,8 +83,58 @@ void write_result_hdf5(const std::filesystem::path& path, const LoadedResult& re
 /// `recordings` by their names in the result directory ("indentation.csv").
 LoadedResult read_result_hdf5(const std::filesystem::path& path);
 
-/// The root `content` of a palp HDF5 file ("recording" or "result"); RecordingError when the file
-/// is not a palp HDF5 file of a version this SDK reads.
+// --- maps ---------------------------------------------------------------------------------------
+
+/// A map directory (map.hpp) read whole: map.json and the result directory of every point that
+/// has one.
+struct LoadedMap {
+  std::filesystem::path dir;          ///< the map's directory, or the HDF5 file it was read from
+  StiffnessMap map;                   ///< map.json
+  /// Each point's result by its MapPoint::result_dir ("points/r1_c1"), in map.json's order.
+  std::vector<std::pair<std::string, LoadedResult>> results;
+  /// The indented points whose result could not be read: (result_dir, the reader's error). They
+  /// stay in `map` with their numbers from map.json; their samples are lost.
+  std::vector<std::pair<std::string, std::string>> damaged;
+};
+
+/// load_map(dir) and load_result of every indented point's directory. A point whose directory is
+/// missing or damaged is listed in `damaged` and the others are read (as the tidy CSV does); a
+/// missing or malformed map.json is a ConfigError.
+LoadedMap load_map_results(const std::filesystem::path& dir);
+
+/// Writes a map as one file: map.json as text, its plan, settings and analysis (analyze_map: the
+/// k_fd grid, line means, the soft and stiff lines) typed, and a group per point holding its
+/// result (write_result_hdf5's group, with its repetitions) or why it has none.
+void write_map_hdf5(const std::filesystem::path& path, const LoadedMap& map,
+                    Overwrite overwrite = Overwrite::no);
+
+/// Reads a map written by write_map_hdf5: the same `map`, `results` and `damaged` (`dir` is the
+/// file). RecordingError naming the file and the object for anything else.
+LoadedMap read_map_hdf5(const std::filesystem::path& path);
+
+// --- identifications (sweep, free air) -----------------------------------------------------------
+
+/// An identification result directory (identification_result.hpp): result.json with sweep.csv,
+/// and the measured response frf.csv when the run was analysed.
+struct LoadedIdentification {
+  LoadedResult result;
+  std::optional<analysis::Frf> frf;   ///< as analysis::read_frf_table gives frf.csv
+};
+
+/// The identification a loaded result directory holds: reads `result.dir`/frf.csv when it is
+/// there. ConfigError when the result is not an identification; RecordingError for a bad frf.csv.
+LoadedIdentification identification_of(LoadedResult result);
+
+/// Writes an identification as one file: the result's group (as write_result_hdf5) and the
+/// response as typed columns (f_Hz, re/im/sigma_m_per_N). ConfigError for another experiment.
+void write_identification_hdf5(const std::filesystem::path& path, const LoadedIdentification& id,
+                               Overwrite overwrite = Overwrite::no);
+
+/// Reads an identification written by write_identification_hdf5 (`result.dir` is the file).
+LoadedIdentification read_identification_hdf5(const std::filesystem::path& path);
+
+/// The root `content` of a palp HDF5 file ("recording", "result", "map" or "identification");
+/// RecordingError when the file is not a palp HDF5 file of a version this SDK reads.
 std::string hdf5_content(const std::filesystem::path& path);
 
 }  // namespace palp

@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "palp/indent.hpp"
 #include "palp/trace.hpp"
 
@@ -85,6 +87,10 @@ StiffnessMap load_map(const std::filesystem::path& dir);
 /// map_plan does after every point: for tools and tests that assemble a map from result
 /// directories (write_result) of their own. load_map reads it back.
 void save_map(const std::filesystem::path& dir, const StiffnessMap& m);
+/// map.json's document (what save_map writes) and back (what load_map reads; ConfigError
+/// "where: problem"): for readers of a map kept elsewhere, such as an HDF5 file (hdf5.hpp).
+nlohmann::json map_to_json(const StiffnessMap& m);
+StiffnessMap map_from_json(const nlohmann::json& j, const std::string& where);
 
 /// The map's analysis: the stiffness grid and the lines (rows, columns) that stand out.
 struct MapAnalysis {

@@ -41,7 +41,9 @@ const Field<StiffnessMap> kMapFields[] = {
     {"stopped_because", &StiffnessMap::stopped_because, 1.0, Need::optional},
 };
 
-json map_json(const StiffnessMap& m) {
+}  // namespace
+
+json map_to_json(const StiffnessMap& m) {
   json pts = json::array();
   for (const MapPoint& p : m.points) {
     json q;
@@ -55,6 +57,8 @@ json map_json(const StiffnessMap& m) {
   format::write_fields(j, m, kMapFields);
   return j;
 }
+
+namespace {
 
 class Mapper {
  public:
@@ -112,7 +116,7 @@ class Mapper {
         m.points.push_back(p);
         m.surface.points.push_back(p.surface);
         m.surface.resume_index = m.resume_index = k + 1;
-        detail::write_json_atomically(file, map_json(m));
+        detail::write_json_atomically(file, map_to_json(m));
         if (o_.progress) o_.progress(MapProgress{m.resume_index, total, &m.points.back(), "done"});
       }
       m.complete = m.surface.complete = true;
@@ -126,7 +130,7 @@ class Mapper {
     }
     finish_surface(m.surface);
     for (std::size_t k = 0; k < m.points.size(); ++k) m.points[k].surface = m.surface.points[k];
-    detail::write_json_atomically(file, map_json(m));
+    detail::write_json_atomically(file, map_to_json(m));
     return m;
   }
 
@@ -213,13 +217,15 @@ StiffnessMap map_plan(Probe& probe, Robot& robot, const Rig& rig, const Plan& pl
 
 void save_map(const std::filesystem::path& dir, const StiffnessMap& m) {
   std::filesystem::create_directories(dir);
-  detail::write_json_atomically(dir / "map.json", map_json(m));
+  detail::write_json_atomically(dir / "map.json", map_to_json(m));
 }
 
 StiffnessMap load_map(const std::filesystem::path& dir) {
   const std::filesystem::path file = dir / "map.json";
-  const json j = detail::read_json_file(file);
-  const std::string f = file.string();
+  return map_from_json(detail::read_json_file(file), file.string());
+}
+
+StiffnessMap map_from_json(const json& j, const std::string& f) {
   if (!detail::has_format(j, "palp.map/1"))
     throw ConfigError(f + ": not a map (\"format\" is not \"palp.map/1\")");
   StiffnessMap m;

@@ -128,23 +128,46 @@ template <> hid_t memory_type<std::uint64_t>() { return H5T_NATIVE_UINT64; }
 template <> hid_t memory_type<std::uint16_t>() { return H5T_NATIVE_UINT16; }
 template <> hid_t memory_type<int>() { return H5T_NATIVE_INT; }
 
+namespace {
+
+/// A dataset of `rank` dimensions `dims` (values row-major), chunked (`chunk`) and filtered unless
+/// it is empty, with its `unit` attribute.
+void put_dataset(hid_t group, const char* name, hid_t file_t, hid_t mem_t, const void* values, int rank,
+                 const hsize_t* dims, const hsize_t* chunk, std::string_view unit, const Where& w) {
+  Id space(check(H5Screate_simple(rank, dims, nullptr), w, "make a dataspace"), H5Sclose);
+  Id dcpl(check(H5Pcreate(H5P_DATASET_CREATE), w, "make a dataset property list"), H5Pclose);
+  hsize_t n = 1;
+  for (int k = 0; k < rank; ++k) n *= dims[k];
+  if (n > 0) {
+    check(H5Pset_chunk(dcpl.get(), rank, chunk), w, "set the chunk size", 0);
+    check(H5Pset_shuffle(dcpl.get()), w, "set the shuffle filter", 0);
+    check(H5Pset_deflate(dcpl.get(), 4), w, "set the deflate filter", 0);
+  }
+  Id d(check(H5Dcreate2(group, name, file_t, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), w,
+             "create the dataset"),
+       H5Dclose);
+  if (n > 0)
+    check(H5Dwrite(d.get(), mem_t, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), w, "write the dataset", 0);
+  put_attr(d.get(), "unit", unit, w);
+}
+
+}  // namespace
+
 template <class T>
 void put_column(hid_t group, const char* name, std::span<const T> values, std::string_view unit,
                 const Where& w_group) {
-  const Where w = w_group.at(name);
   const hsize_t n = values.size();
   const hsize_t chunk = std::min<hsize_t>(std::max<hsize_t>(n, 1), 65536);
-  Id space(check(H5Screate_simple(1, &n, nullptr), w, "make a dataspace"), H5Sclose);
-  Id dcpl(check(H5Pcreate(H5P_DATASET_CREATE), w, "make a dataset property list"), H5Pclose);
-  check(H5Pset_chunk(dcpl.get(), 1, &chunk), w, "set the chunk size", 0);
-  check(H5Pset_shuffle(dcpl.get()), w, "set the shuffle filter", 0);
-  check(H5Pset_deflate(dcpl.get(), 4), w, "set the deflate filter", 0);
-  Id d(check(H5Dcreate2(group, name, file_type<T>(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-             w, "create the dataset"),
-       H5Dclose);
-  check(H5Dwrite(d.get(), memory_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), w,
-        "write the dataset", 0);
-  put_attr(d.get(), "unit", unit, w);
+  put_dataset(group, name, file_type<T>(), memory_type<T>(), values.data(), 1, &n, &chunk, unit, w_group.at(name));
+}
+void put_grid(hid_t group, const char* name, std::span<const double> values, std::size_t rows,
+              std::size_t columns, std::string_view unit, const Where& w_group) {
+  const Where w = w_group.at(name);
+  if (values.size() != rows * columns)
+    fail(w, std::to_string(values.size()) + " values for a " + std::to_string(rows) + " x " +
+                std::to_string(columns) + " grid");
+  const hsize_t dims[2] = {rows, columns};
+  put_dataset(group, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(), 2, dims, dims, unit, w);
 }
 template void put_column<double>(hid_t, const char*, std::span<const double>, std::string_view, const Where&);
 template void put_column<std::uint64_t>(hid_t, const char*, std::span<const std::uint64_t>, std::string_view, const Where&);

@@ -94,10 +94,14 @@ template <class T> hid_t file_type();
 template <class T> hid_t memory_type();
 
 /// A 1-D dataset of `values`, chunked (at most 65536 rows a chunk), shuffled and deflated, with
-/// its `unit` attribute.
+/// its `unit` attribute. An empty one is contiguous (HDF5 chunks no empty extent).
 template <class T>
 void put_column(hid_t group, const char* name, std::span<const T> values, std::string_view unit,
                 const Where& w);
+/// A 2-D float64 dataset of `rows` x `columns` row-major `values` (a map's grid), chunked whole,
+/// shuffled and deflated, with its `unit` attribute.
+void put_grid(hid_t group, const char* name, std::span<const double> values, std::size_t rows,
+              std::size_t columns, std::string_view unit, const Where& w);
 
 // --- reading -----------------------------------------------------------------------------------
 

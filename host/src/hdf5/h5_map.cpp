@@ -1,0 +1,141 @@
+// A map directory as one HDF5 file (docs/hdf5-format.md "A map file"): map.json as text, the
+// map's settings and analysis typed, a result's group per point.
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hdf5/h5.hpp"
+#include "hdf5/h5_result.hpp"
+#include "palp/error.hpp"
+#include "palp/hdf5.hpp"
+
+namespace palp {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using namespace hdf5_detail;
+
+/// A point's group name: its place on the grid, as its result directory's ("r1_c2").
+std::string point_group_name(const MapPoint& p) {
+  return "r" + std::to_string(p.row) + "_c" + std::to_string(p.column);
+}
+
+/// analyze_map's numbers in lab units (N/mm), as datasets and attributes of `/map/analysis`.
+void write_map_analysis(hid_t parent, const Where& w, const StiffnessMap& m) {
+  const MapAnalysis a = analyze_map(m);
+  const Id g = create_group(parent, w);
+  const auto n_per_mm = [](double v) { return v * 1e-3; };
+  std::vector<double> k;
+  for (const auto& v : a.k_N_per_m) k.push_back(v ? n_per_mm(*v) : std::numeric_limits<double>::quiet_NaN());
+  put_grid(g.get(), "k_fd_N_per_mm", k, static_cast<std::size_t>(a.rows), static_cast<std::size_t>(a.columns),
+           "N/mm", w);
+  const auto means = [&](const char* name, const std::vector<double>& v) {
+    std::vector<double> out;
+    for (double x : v) out.push_back(n_per_mm(x));
+    put_column<double>(g.get(), name, out, "N/mm", w);
+  };
+  means("column_mean_N_per_mm", a.column_mean_N_per_m);
+  means("row_mean_N_per_mm", a.row_mean_N_per_m);
+  for (const auto& [name, lines] : {std::pair{"soft_columns", &a.soft_columns}, {"stiff_columns", &a.stiff_columns},
+                                    {"soft_rows", &a.soft_rows}, {"stiff_rows", &a.stiff_rows}})
+    put_column<int>(g.get(), name, *lines, "1", w);
+  put_attr(g.get(), "median_N_per_mm", n_per_mm(a.median_N_per_m), w);
+  put_attr(g.get(), "contrast", a.contrast, w);
+}
+
+const LoadedResult* result_of(const LoadedMap& m, const std::string& result_dir) {
+  for (const auto& [dir, r] : m.results)
+    if (dir == result_dir) return &r;
+  return nullptr;
+}
+const std::string* damage_of(const LoadedMap& m, const std::string& result_dir) {
+  for (const auto& [dir, why] : m.damaged)
+    if (dir == result_dir) return &why;
+  return nullptr;
+}
+
+}  // namespace
+
+LoadedMap load_map_results(const fs::path& dir) {
+  LoadedMap out;
+  out.dir = dir;
+  out.map = load_map(dir);
+  for (const MapPoint& p : out.map.points) {
+    if (!p.indented || p.result_dir.empty()) continue;
+    try {
+      out.results.emplace_back(p.result_dir, load_result(dir / p.result_dir));
+    } catch (const Error& e) {  // a damaged point: named, and the others read
+      out.damaged.emplace_back(p.result_dir, e.what());
+    }
+  }
+  return out;
+}
+
+void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrite) {
+  const json doc = map_to_json(m.map);
+  if (m.map.rows < 1 || m.map.columns < 1)
+    throw ConfigError(path.string() + ": the map has no grid (" + std::to_string(m.map.rows) + " x " +
+                      std::to_string(m.map.columns) + ")");
+  for (const MapPoint& p : m.map.points)
+    if (p.indented && !p.result_dir.empty() && !result_of(m, p.result_dir) && !damage_of(m, p.result_dir))
+      throw ConfigError(path.string() + ": point " + p.result_dir +
+                        " was indented but neither its result nor why it is missing is given");
+  write_palp_file(path, overwrite, kHdf5ContentMap, [&](hid_t root) {
+    const Where w{path.string(), "/map"};
+    const Id g = create_group(root, w);
+    put_attr(g.get(), "map_json", doc.dump(), w);
+    put_json_scalars(g.get(), "", doc, {}, w);  // quick look: plan, rows, columns, complete, ...
+    const Id s = create_group(g.get(), w.at("settings"));
+    put_json_scalars(s.get(), "", doc["settings"], {"analysis"}, w.at("settings"));
+    write_map_analysis(g.get(), w.at("analysis"), m.map);
+    const Where wp = w.at("points");
+    const Id points = create_group(g.get(), wp);
+    for (std::size_t k = 0; k < m.map.points.size(); ++k) {
+      const MapPoint& p = m.map.points[k];
+      const Where wq = wp.at(point_group_name(p));
+      const LoadedResult* r = p.result_dir.empty() ? nullptr : result_of(m, p.result_dir);
+      if (r != nullptr) write_result_group(points.get(), wq, *r);
+      const Id q = r != nullptr ? open_group(points.get(), point_group_name(p).c_str(), wp) : create_group(points.get(), wq);
+      put_json_scalars(q.get(), "", doc["points"][k], {}, wq);  // row, column, k_fd_N_per_mm, reason, ...
+      put_attr(q.get(), "indented", static_cast<std::int64_t>(p.indented ? 1 : 0), wq);
+      if (const std::string* why = p.result_dir.empty() ? nullptr : damage_of(m, p.result_dir))
+        put_attr(q.get(), "damaged", std::string_view(*why), wq);
+    }
+  });
+}
+
+LoadedMap read_map_hdf5(const fs::path& path) {
+  const Id f = open_palp_file(path, kHdf5ContentMap);
+  const Where root{path.string(), "/"};
+  const Id g = open_group(f.get(), "map", root);
+  const Where w = root.at("map");
+  LoadedMap out;
+  out.dir = path;
+  const json doc = json::parse(get_string_attr(g.get(), "map_json", w), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) fail(w.at("map_json"), "is not a JSON object");
+  try {
+    out.map = map_from_json(doc, "map.json");
+  } catch (const ConfigError& e) {
+    fail(w.at("map_json"), e.what());
+  }
+  const Id points = open_group(g.get(), "points", w);
+  const Where wp = w.at("points");
+  for (const MapPoint& p : out.map.points) {
+    const std::string name = point_group_name(p);
+    if (!p.indented || p.result_dir.empty()) continue;
+    const Id q = open_group(points.get(), name.c_str(), wp);
+    if (has_attr(q.get(), "damaged"))
+      out.damaged.emplace_back(p.result_dir, get_string_attr(q.get(), "damaged", wp.at(name)));
+    else
+      out.results.emplace_back(p.result_dir, read_result_group(points.get(), name.c_str(), wp, path));
+  }
+  return out;
+}
+
+}  // namespace palp
