@@ -44,6 +44,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "palp/analysis/frf.hpp"
 #include "palp/map.hpp"
 #include "palp/recording.hpp"
@@ -89,7 +91,8 @@ LoadedResult read_result_hdf5(const std::filesystem::path& path);
 /// has one.
 struct LoadedMap {
   std::filesystem::path dir;          ///< the map's directory, or the HDF5 file it was read from
-  StiffnessMap map;                   ///< map.json
+  nlohmann::json document;            ///< map.json as written (its numbers exactly)
+  StiffnessMap map;                   ///< map.json read (map_from_json(document))
   /// Each point's result by its MapPoint::result_dir ("points/r1_c1"), in map.json's order.
   std::vector<std::pair<std::string, LoadedResult>> results;
   /// The indented points whose result could not be read: (result_dir, the reader's error). They
@@ -102,14 +105,15 @@ struct LoadedMap {
 /// missing or malformed map.json is a ConfigError.
 LoadedMap load_map_results(const std::filesystem::path& dir);
 
-/// Writes a map as one file: map.json as text, its plan, settings and analysis (analyze_map: the
+/// Writes a map as one file: map.json as text (`document`, which is what is written and read:
+/// map_to_json(map) only when `document` is not an object), its plan, settings and analysis (analyze_map: the
 /// k_fd grid, line means, the soft and stiff lines) typed, and a group per point holding its
 /// result (write_result_hdf5's group, with its repetitions) or why it has none.
 void write_map_hdf5(const std::filesystem::path& path, const LoadedMap& map,
                     Overwrite overwrite = Overwrite::no);
 
-/// Reads a map written by write_map_hdf5: the same `map`, `results` and `damaged` (`dir` is the
-/// file). RecordingError naming the file and the object for anything else.
+/// Reads a map written by write_map_hdf5: the same `document`, `map`, `results` and `damaged`
+/// (`dir` is the file). RecordingError naming the file and the object for anything else.
 LoadedMap read_map_hdf5(const std::filesystem::path& path);
 
 // --- identifications (sweep, free air) -----------------------------------------------------------

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/trace_json.hpp"
 #include "hdf5/h5.hpp"
 #include "hdf5/h5_result.hpp"
 #include "palp/error.hpp"
@@ -26,13 +27,20 @@ std::string point_group_name(const MapPoint& p) {
   return "r" + std::to_string(p.row) + "_c" + std::to_string(p.column);
 }
 
-/// analyze_map's numbers in lab units (N/mm), as datasets and attributes of `/map/analysis`.
-void write_map_analysis(hid_t parent, const Where& w, const StiffnessMap& m) {
+/// analyze_map's numbers in lab units (N/mm), as datasets and attributes of `/map/analysis`; the
+/// grid holds map.json's own numbers (`doc`), exactly.
+void write_map_analysis(hid_t parent, const Where& w, const StiffnessMap& m, const json& doc) {
   const MapAnalysis a = analyze_map(m);
   const Id g = create_group(parent, w);
   const auto n_per_mm = [](double v) { return v * 1e-3; };
-  std::vector<double> k;
-  for (const auto& v : a.k_N_per_m) k.push_back(v ? n_per_mm(*v) : std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> k(a.k_N_per_m.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t n = 0; n < m.points.size(); ++n) {  // doc's points are m's (map_from_json)
+    const MapPoint& p = m.points[n];
+    const auto v = doc["points"][n].find("k_fd_N_per_mm");
+    if (p.row >= 1 && p.row <= a.rows && p.column >= 1 && p.column <= a.columns && v != doc["points"][n].end() &&
+        v->is_number())
+      k[static_cast<std::size_t>((p.row - 1) * a.columns + p.column - 1)] = v->get<double>();
+  }
   put_grid(g.get(), "k_fd_N_per_mm", k, static_cast<std::size_t>(a.rows), static_cast<std::size_t>(a.columns),
            "N/mm", w);
   const auto means = [&](const char* name, const std::vector<double>& v) {
@@ -65,7 +73,8 @@ const std::string* damage_of(const LoadedMap& m, const std::string& result_dir) 
 LoadedMap load_map_results(const fs::path& dir) {
   LoadedMap out;
   out.dir = dir;
-  out.map = load_map(dir);
+  out.document = detail::read_json_file(dir / "map.json");
+  out.map = map_from_json(out.document, (dir / "map.json").string());
   for (const MapPoint& p : out.map.points) {
     if (!p.indented || p.result_dir.empty()) continue;
     try {
@@ -78,11 +87,9 @@ LoadedMap load_map_results(const fs::path& dir) {
 }
 
 void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrite) {
-  const json doc = map_to_json(m.map);
-  if (m.map.rows < 1 || m.map.columns < 1)
-    throw ConfigError(path.string() + ": the map has no grid (" + std::to_string(m.map.rows) + " x " +
-                      std::to_string(m.map.columns) + ")");
-  for (const MapPoint& p : m.map.points)
+  const json doc = m.document.is_object() ? m.document : map_to_json(m.map);
+  const StiffnessMap map = map_from_json(doc, path.string() + ": map.json");  // what is written, checked
+  for (const MapPoint& p : map.points)
     if (p.indented && !p.result_dir.empty() && !result_of(m, p.result_dir) && !damage_of(m, p.result_dir))
       throw ConfigError(path.string() + ": point " + p.result_dir +
                         " was indented but neither its result nor why it is missing is given");
@@ -92,12 +99,13 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
     put_attr(g.get(), "map_json", doc.dump(), w);
     put_json_scalars(g.get(), "", doc, {}, w);  // quick look: plan, rows, columns, complete, ...
     const Id s = create_group(g.get(), w.at("settings"));
-    put_json_scalars(s.get(), "", doc["settings"], {"analysis"}, w.at("settings"));
-    write_map_analysis(g.get(), w.at("analysis"), m.map);
+    if (const auto settings = doc.find("settings"); settings != doc.end() && settings->is_object())
+      put_json_scalars(s.get(), "", *settings, {"analysis"}, w.at("settings"));
+    write_map_analysis(g.get(), w.at("analysis"), map, doc);
     const Where wp = w.at("points");
     const Id points = create_group(g.get(), wp);
-    for (std::size_t k = 0; k < m.map.points.size(); ++k) {
-      const MapPoint& p = m.map.points[k];
+    for (std::size_t k = 0; k < map.points.size(); ++k) {
+      const MapPoint& p = map.points[k];
       const Where wq = wp.at(point_group_name(p));
       const LoadedResult* r = p.result_dir.empty() ? nullptr : result_of(m, p.result_dir);
       if (r != nullptr) write_result_group(points.get(), wq, *r);
@@ -117,10 +125,10 @@ LoadedMap read_map_hdf5(const fs::path& path) {
   const Where w = root.at("map");
   LoadedMap out;
   out.dir = path;
-  const json doc = json::parse(get_string_attr(g.get(), "map_json", w), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) fail(w.at("map_json"), "is not a JSON object");
+  out.document = json::parse(get_string_attr(g.get(), "map_json", w), nullptr, false);
+  if (out.document.is_discarded() || !out.document.is_object()) fail(w.at("map_json"), "is not a JSON object");
   try {
-    out.map = map_from_json(doc, "map.json");
+    out.map = map_from_json(out.document, "map.json");
   } catch (const ConfigError& e) {
     fail(w.at("map_json"), e.what());
   }

@@ -1,6 +1,7 @@
 """An independent reader of palp's HDF5 files: Debian's h5py opens the files palp-hdf5-fixture
-wrote from the known synthetic recording and result (tests/host/hdf5/hdf5_fixture.hpp) and reads
-the known values, and every dataset's unit is the one docs/hdf5-format.md states.
+wrote from the known synthetic recording, result, map and identification
+(tests/host/hdf5/hdf5_fixture.hpp) and reads the known values, and every dataset's unit is the
+one docs/hdf5-format.md states.
 
 usage: /usr/bin/python3 check_h5py.py docs/hdf5-format.md FIXTURE_DIR"""
 import json
@@ -75,19 +76,65 @@ with h5py.File(os.path.join(fixture, "result.h5"), "r") as f:
     check(list(r["recordings"].keys()) == ["indentation.csv"], "/result/recordings members")
     check_recording(r["recordings"]["indentation.csv"], "result.h5:/result/recordings/indentation.csv")
 
+with h5py.File(os.path.join(fixture, "map.h5"), "r") as f:
+    check(text(f.attrs["content"]) == "map", "map.h5 content")
+    m = f["map"]
+    doc_json = json.loads(text(m.attrs["map_json"]))
+    check(doc_json["format"] == "palp.map/1" and doc_json["complete"] is False, "map.h5 map_json")
+    check(int(m.attrs["rows"]) == 2 and int(m.attrs["columns"]) == 2 and text(m.attrs["plan"]) == "pad",
+          "/map@rows, columns, plan")
+    a = m["analysis"]
+    k = a["k_fd_N_per_mm"][:]
+    check(k.shape == (2, 2) and k[0, 0] == 0.5 and k[1, 0] == 0.25 and np.isnan(k[0, 1]) and np.isnan(k[1, 1]),
+          f"/map/analysis/k_fd_N_per_mm {k}")
+    check(list(a["row_mean_N_per_mm"][:]) == [0.5, 0.25], "/map/analysis/row_mean_N_per_mm")
+    check(list(a["soft_rows"][:]) == [2] and list(a["stiff_rows"][:]) == [1], "soft/stiff rows")
+    check(len(a["soft_columns"]) == 0 and len(a["stiff_columns"]) == 0, "no soft/stiff column")
+    check(a.attrs["median_N_per_mm"] == 0.5 and a.attrs["contrast"] == 0.1, "/map/analysis attributes")
+    check(sorted(m["points"].keys()) == ["r1_c1", "r1_c2", "r2_c1"], f"/map/points {list(m['points'].keys())}")
+    p = m["points/r1_c1"]
+    check(p.attrs["k_fd_N_per_mm"] == 0.5 and int(p.attrs["indented"]) == 1, "r1_c1 point attributes")
+    check(text(m["points/r1_c2"].attrs["reason"]) == "no contact" and int(m["points/r1_c2"].attrs["indented"]) == 0,
+          "r1_c2 not indented")
+    rec = p["recordings/indentation.csv"]
+    reps = rec["rep"][:]
+    r0, r1 = p["repetitions/rep0"].attrs, p["repetitions/rep1"].attrs
+    check(int(r0["first_row"]) == 0 and int(r0["rows"]) + int(r1["rows"]) == len(reps)
+          and int(r1["first_row"]) == int(r0["rows"]), "repetitions' rows")
+    check(set(reps[:int(r0["rows"])]) == {int(r0["rep"])} and set(reps[int(r1["first_row"]):]) == {int(r1["rep"])},
+          "each repetition's rows hold its rep")
+    for rk in (r0, r1):  # each repetition alone finds the synthetic run's E* (125.8 kPa, hdf5_fixture.hpp)
+        check(abs(rk.get("E_star_hertz_Pa", 0.0) - 125.8e3) < 0.01 * 125.8e3, f"a repetition's E* {dict(rk)}")
+
+with h5py.File(os.path.join(fixture, "identification.h5"), "r") as f:
+    check(text(f.attrs["content"]) == "identification", "identification.h5 content")
+    r = f["result"]
+    check(text(r.attrs["experiment"]) == "identification", "/result@experiment")
+    check(r["analysis"].attrs["f_n_Hz"] == 42.5, "/result/analysis@f_n_Hz")
+    frf = r["frf"]
+    check(list(frf["f_Hz"][:]) == [10.0, 20.0, 40.0], "/result/frf/f_Hz")
+    check(list(frf["re_m_per_N"][:]) == [1e-3, 8e-4, 2e-4], "/result/frf/re_m_per_N")
+    check(list(frf["im_m_per_N"][:]) == [-2e-4, -5e-4, -6e-4], "/result/frf/im_m_per_N")
+    check(list(frf["sigma_m_per_N"][:]) == [1e-6, 2e-6, 3e-6], "/result/frf/sigma_m_per_N")
+    check(int(frf.attrs["lines"]) == 3, "/result/frf@lines")
+    check_recording(r["recordings/sweep.csv"], "identification.h5:/result/recordings/sweep.csv")
+
 # every dataset's unit is the documented one, and every dataset is documented
-for name in ("recording.h5", "result.h5"):
-    documented = {p: u for p, k, t, u in hdf5_doc_layout.rows_for(doc, name) if k == "dataset"}
+for name in hdf5_doc_layout.FILES:
+    documented = hdf5_doc_layout.rows_for(doc, name)
     with h5py.File(os.path.join(fixture, name), "r") as f:
         found = {}
         f.visititems(lambda n, o: found.__setitem__("/" + n, text(o.attrs.get("unit")))
                      if isinstance(o, h5py.Dataset) else None)
-    check(set(found) == set(documented), f"{name}: datasets {sorted(set(found) ^ set(documented))} "
-                                         "are in the file or the doc, not both")
     for path, unit in found.items():
-        check(unit == documented.get(path), f"{name}:{path} unit {unit!r}, the doc says {documented.get(path)!r}")
+        row = hdf5_doc_layout.row_of(documented, path, "dataset")
+        check(row is not None, f"{name}:{path} is not in the doc")
+        check(row is None or unit == row[4], f"{name}:{path} unit {unit!r}, the doc says {row and row[4]!r}")
+    for paths, _, kind, _, _ in documented:
+        for path in paths:
+            check(kind != "dataset" or path in found, f"{name}:{path} is in the doc, not in the file")
 
 if failures:
     print("h5py check failed:\n  " + "\n  ".join(failures))
     sys.exit(1)
-print("h5py: recording.h5 and result.h5 read with the known values and the documented units")
+print("h5py: " + ", ".join(hdf5_doc_layout.FILES) + " read with the known values and the documented units")

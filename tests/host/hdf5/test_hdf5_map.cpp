@@ -74,6 +74,7 @@ TEST_F(Hdf5, MapReadsBackAsTheSameMapAndPointResultsBitExact) {
   palp::write_map_hdf5(dir_ / "map.h5", dir);
   EXPECT_EQ(palp::hdf5_content(dir_ / "map.h5"), "map");
   const palp::LoadedMap back = palp::read_map_hdf5(dir_ / "map.h5");
+  EXPECT_EQ(back.document, dir.document);  // map.json's numbers exactly
   EXPECT_EQ(palp::map_to_json(back.map), palp::map_to_json(dir.map));
   EXPECT_FALSE(back.map.complete);
   EXPECT_EQ(back.map.points[1].reason, "no contact");
