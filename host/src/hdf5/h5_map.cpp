@@ -110,8 +110,10 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
       const LoadedResult* r = p.result_dir.empty() ? nullptr : result_of(m, p.result_dir);
       if (r != nullptr) write_result_group(points.get(), wq, *r);
       const Id q = r != nullptr ? open_group(points.get(), point_group_name(p).c_str(), wp) : create_group(points.get(), wq);
-      put_json_scalars(q.get(), "", doc["points"][k], {}, wq);  // row, column, k_fd_N_per_mm, reason, ...
+      put_attr(q.get(), "row", static_cast<std::int64_t>(p.row), wq);  // typed alike whatever JSON made them
+      put_attr(q.get(), "column", static_cast<std::int64_t>(p.column), wq);
       put_attr(q.get(), "indented", static_cast<std::int64_t>(p.indented ? 1 : 0), wq);
+      put_json_scalars(q.get(), "", doc["points"][k], {}, wq);  // k_fd_N_per_mm, reason, result_dir, ...
       if (const std::string* why = p.result_dir.empty() ? nullptr : damage_of(m, p.result_dir))
         put_attr(q.get(), "damaged", std::string_view(*why), wq);
     }
