@@ -1,7 +1,8 @@
 // palpctl export: a map or a result directory as one dataset file, without a device.
 //   export --format csv INPUT --out FILE   the tidy CSV (palp/tidy_csv.hpp, docs/result-format.md)
-//   export --format hdf5 INPUT --out FILE  a recording or a result directory as one HDF5 file
-//                                          (palp/hdf5.hpp, docs/hdf5-format.md; export_hdf5.cpp)
+//   export --format hdf5 INPUT --out FILE  a recording, a result directory, an identification or a
+//                                          map as one HDF5 file (palp/hdf5.hpp,
+//                                          docs/hdf5-format.md; export_hdf5.cpp)
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -55,12 +56,16 @@ void add_export_command(CLI::App& app, Context& ctx) {
       "rep, the position in mm, each repetition's stiffness and fit keys in lab units, a <key>_reason "
       "beside every key that may be empty), that pandas.read_csv(f) or MATLAB readtable(f) read in "
       "one line (docs/result-format.md \"The tidy CSV\"). A damaged point does not stop the export: "
-      "its row says why and palpctl names it on stderr. --format hdf5: a recording (run.csv or run.h5) or "
-      "a result directory as one HDF5 file (docs/hdf5-format.md; a map is not written yet).");
+      "its row says why and palpctl names it on stderr. --format hdf5: a map directory, a result directory "
+      "(an indentation, or a sweep's or free-air run's identification with its frequency response) or a "
+      "recording (run.csv or run.h5) as one HDF5 file: the samples as typed, compressed columns with "
+      "their units, result.json and map.json whole, the map's k_fd grid and soft/stiff lines, a group per "
+      "point and per repetition (docs/hdf5-format.md). A damaged point of a map is named on stderr and "
+      "kept in the file as lost; the other points are written.");
   cmd->add_option("--format", o->format, "csv or hdf5")->required();
   cmd->add_option("input,--input", o->input,
-                  "The map's directory or a result directory (hdf5: a result directory or a "
-                  "recording)")
+                  "The map's directory or a result directory (hdf5: also an identification's "
+                  "result directory or a recording)")
       ->required();
   cmd->add_option("--out", o->out, "The file to write (atomically)")->required();
   cmd->add_flag("--overwrite", o->overwrite,

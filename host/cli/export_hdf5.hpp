@@ -13,9 +13,11 @@ namespace palpctl {
 bool hdf5_available();
 
 /// Writes INPUT as one HDF5 file (docs/hdf5-format.md): a recording (run.csv with its sidecar,
-/// or run.h5) or a result directory (result.json). A map or sweep directory is refused (not
-/// written yet). Prints what it wrote (--json: file, format, content, rows). ConfigError for an
-/// existing --out without --overwrite, or one palp did not write.
+/// or run.h5), a result directory (result.json), an identification's (sweep, free air: with its
+/// frf.csv) or a map directory (map.json and its points; a damaged point is named on stderr, kept
+/// in the file as lost, and the others are written). Prints what it wrote (--json: file, format,
+/// content, rows, and for a map points, grid_points, complete, results, damaged). ConfigError for
+/// an existing --out without --overwrite, or one palp did not write.
 int export_hdf5(const Context& ctx, const std::string& input, const std::string& out, bool overwrite);
 
 }  // namespace palpctl
