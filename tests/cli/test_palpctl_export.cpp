@@ -1,7 +1,8 @@
 // palpctl export --format csv: the tidy CSV of a synthetic map (written by the SDK's own writers,
 // known stiffnesses) read back by an independent reader, Debian's Python with its stdlib csv
 // module (/usr/bin/python3: the python3 first on PATH may be another), to full precision; the
-// refusals with their exact text and exit code; a damaged point named on stderr.
+// refusals with their exact text and exit code; a damaged point named on stderr. --format hdf5:
+// results and maps read back with the SDK (tests/host/hdf5 has the independent readers).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -146,14 +147,49 @@ TEST_F(PalpctlExport, Hdf5OfAResultAndOfARecordingReadsBackAsTheSameObjects) {
   EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
 }
 
-TEST_F(PalpctlExport, Hdf5OfAMapIsRefusedWithExit2AndNothingWritten) {
-  fs::create_directories(dir_ / "map");
-  std::ofstream(dir_ / "map" / "map.json") << "{}";
+TEST_F(PalpctlExport, Hdf5OfAMapReadsBackAsTheMapAndItsPointsAndADeletedPointIsNamed) {
+  palp::test::write_synth_map(dir_ / "map", 2, 2, 2);
   const fs::path out = dir_ / "map.h5";
-  const auto r = palpctl({"export", "--format", "hdf5", (dir_ / "map").string(), "--out", out.string()});
+  auto r = palpctl({"export", "--format", "hdf5", (dir_ / "map").string(), "--out", out.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const palp::LoadedMap dir = palp::load_map_results(dir_ / "map");
+  const palp::LoadedMap h5 = palp::read_map_hdf5(out);
+  EXPECT_EQ(h5.document, dir.document);
+  ASSERT_EQ(h5.results.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(h5.results[k].second.summary, dir.results[k].second.summary);
+    EXPECT_EQ(h5.results[k].second.recordings[0].second.z_mm, dir.results[k].second.recordings[0].second.z_mm);
+  }
+  std::size_t samples = 0;
+  for (const auto& p : dir.results) samples += p.second.recordings[0].second.size();
+  EXPECT_EQ(r.out, "wrote " + out.string() + ": a map of 4 of 4 points (4 with results), " + std::to_string(samples) +
+                       " samples (HDF5, docs/hdf5-format.md)\n");
+
+  fs::remove_all(dir_ / "map" / "points" / "r1_c2");
+  r = palpctl({"--json", "export", "--format", "hdf5", (dir_ / "map").string(), "--out", (dir_ / "lost.h5").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "palpctl: export: a damaged point (the file says so in its group; the export went on): " +
+                       (dir_ / "map" / "points" / "r1_c2" / "result.json").string() + ": no such result directory\n");
+  EXPECT_EQ(json::parse(r.out)["damaged"], json::array({"points/r1_c2"}));
+  EXPECT_EQ(palp::read_map_hdf5(dir_ / "lost.h5").results.size(), 3u);
+}
+
+TEST_F(PalpctlExport, Hdf5OfAMapRefusesAnExistingOutBeforeReadingAndAForeignOneAlways) {
+  palp::test::write_synth_map(dir_ / "map", 1, 2, 1);
+  std::ofstream(dir_ / "notes.h5") << "my notes\n";
+  const std::vector<std::string> args = {"export", "--format", "hdf5", (dir_ / "map").string(), "--out",
+                                         (dir_ / "notes.h5").string()};
+  auto r = palpctl(args);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("is a map; a map as one HDF5 file is not written yet"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(r.err, "palpctl: " + (dir_ / "notes.h5").string() +
+                       " already exists; choose another --out, or pass --overwrite to replace it\n");
+  auto again = args;
+  again.push_back("--overwrite");
+  r = palpctl(again);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("palp did not write it"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(dir_ / "notes.h5"), "my notes\n");
 }
 #endif
 
