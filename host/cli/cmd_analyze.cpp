@@ -380,7 +380,8 @@ void add_analyze_command(CLI::App& app, Context& ctx) {
       "map", "A saved map (palpctl map) re-analysed point by point from its recordings with these "
              "options: the k_fd stiffness grid and its soft and stiff rows and columns");
   add_indentation_options(map, *mp);
-  map->get_option("--input")->description("The map's directory (map.json, points/r<row>_c<column>/)");
+  map->get_option("--input")->description("The map's directory (map.json, points/r<row>_c<column>/), or the "
+                                          "map exported as one HDF5 file (palpctl export --format hdf5)");
   map->add_option("--contrast", *mc, "A line is soft (stiff) when its mean is this fraction below (above) "
                                      "the median line's")
       ->check(CLI::Range(0.0, 1.0))

@@ -4,9 +4,16 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <iostream>
 
 #include "common.hpp"
+#include "export_hdf5.hpp"
+#include "palp/error.hpp"
+#ifdef PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "palp/map.hpp"
 #include "palp/result.hpp"
 #include "palp/robot.hpp"
@@ -119,13 +126,39 @@ int map(const Context& ctx, const MapCli& o) {
 
 int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
                         bool kf_table, double contrast) {
-  palp::StiffnessMap m = palp::load_map(dir);
+  // a map directory, or the same map exported as one HDF5 file (palp/hdf5.hpp)
+  std::function<palp::LoadedResult(const palp::MapPoint&)> result_of = [&dir](const palp::MapPoint& p) {
+    return palp::load_result(std::filesystem::path(dir) / p.result_dir);
+  };
+  palp::StiffnessMap m;
+#ifdef PALP_HAVE_HDF5
+  auto file = std::make_shared<palp::LoadedMap>();
+  if (palp::is_hdf5_file(dir)) {
+    *file = palp::read_map_hdf5(dir);
+    m = file->map;
+    result_of = [file, &dir](const palp::MapPoint& p) {
+      for (const auto& [name, r] : file->results)
+        if (name == p.result_dir) return r;
+      std::string why = "not in the file";
+      for (const auto& [name, lost] : file->damaged)
+        if (name == p.result_dir) why = "lost when the map was exported: " + lost;
+      throw palp::RecordingError(dir, 0, "point " + p.result_dir + ": " + why);
+    };
+  } else {
+    m = palp::load_map(dir);
+  }
+#else
+  if (std::filesystem::path(dir).extension() == ".h5" && !hdf5_available())
+    throw palp::ConfigError(dir + ": this palpctl was built without HDF5 and reads no .h5 (install libhdf5-dev, "
+                                  "scripts/install-deps, and build again)");
+  m = palp::load_map(dir);
+#endif
   Progress progress("analyze map", m.points.size(), !ctx.json, "points");
   std::size_t done = 0;
   for (palp::MapPoint& p : m.points) {
     progress.update(done++);
     if (!p.indented || p.result_dir.empty()) continue;
-    palp::IndentationRun run = palp::indentation_run_of(palp::load_result(std::filesystem::path(dir) / p.result_dir));
+    palp::IndentationRun run = palp::indentation_run_of(result_of(p));
     run.settings.analysis = params;
     if (kf_table) {
       if (!run.recording.sidecar)

@@ -165,6 +165,12 @@ TEST_F(PalpctlExport, Hdf5OfAMapReadsBackAsTheMapAndItsPointsAndADeletedPointIsN
   for (const auto& p : dir.results) samples += p.second.recordings[0].second.size();
   EXPECT_EQ(r.out, "wrote " + out.string() + ": a map of 4 of 4 points (4 with results), " + std::to_string(samples) +
                        " samples (HDF5, docs/hdf5-format.md)\n");
+  // palpctl analyze map re-analyses the file to the directory's numbers, byte for byte
+  const auto from_dir = palpctl({"--json", "analyze", "map", "--input", (dir_ / "map").string()});
+  const auto from_h5 = palpctl({"--json", "analyze", "map", "--input", out.string()});
+  ASSERT_EQ(from_h5.code, 0) << from_h5.err;
+  EXPECT_EQ(from_h5.out, from_dir.out);
+  EXPECT_TRUE(json::parse(from_h5.out)["analysis"]["k_fd_N_per_mm"][1][1].is_number());
 
   fs::remove_all(dir_ / "map" / "points" / "r1_c2");
   r = palpctl({"--json", "export", "--format", "hdf5", (dir_ / "map").string(), "--out", (dir_ / "lost.h5").string()});
