@@ -5,6 +5,9 @@
 # installs, under the prefix:
 #   lib/libpalp_{analysis,device,experiments}.a, libpalp_protocol.a, libpalp_protocol_text.a
 #                                                                    (the SDK and what it links)
+#   lib/libpalp_hdf5.a, include/palp/hdf5.hpp                        palp::hdf5, when it was built
+#                                                                    (HDF5 found): palpConfig then
+#                                                                    finds HDF5 for it
 #   include/palp/*.hpp, include/palp/protocol/*.hpp                  (host/include, protocol/include)
 #   lib/cmake/palp/palpConfig.cmake (+ version, targets)             find_package(palp) -> palp::sdk,
 #                                                                    palp::analysis, ::device,
@@ -82,10 +85,24 @@ if(TARGET palp_sim_inproc)
           FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 endif()
 
+# palp::hdf5 (palp/hdf5.hpp), only when it was built: an install without HDF5 has neither the
+# library nor its header, and its palpConfig never looks for HDF5 (PALP_INSTALL_HDF5).
+set(PALP_INSTALL_HDF5 FALSE)
+set(palp_hdf5_header_rule PATTERN "hdf5.hpp" EXCLUDE)
+if(TARGET palp_hdf5)
+  set_target_properties(palp_hdf5 PROPERTIES EXPORT_NAME hdf5)
+  install(TARGETS palp_hdf5 EXPORT palpTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
+  set(PALP_INSTALL_HDF5 TRUE)
+  set(palp_hdf5_header_rule)
+  # the libraries FindHDF5 gave the build (an INTERFACE target): palpConfig makes the same target
+  # from them, as FindHDF5 cannot run in a consumer that enables no C
+  get_target_property(PALP_HDF5_LINK_LIBRARIES HDF5::HDF5 INTERFACE_LINK_LIBRARIES)
+endif()
+
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/protocol/host/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT sdk
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" ${palp_hdf5_header_rule})
 install(EXPORT palpTargets NAMESPACE palp:: DESTINATION ${PALP_INSTALL_CMAKEDIR} COMPONENT sdk)
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/palpConfig.cmake.in

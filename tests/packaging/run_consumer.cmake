@@ -3,6 +3,7 @@
 #   2. the installed tree holds the libraries, headers, package files, tools and udev rules
 #   3. configure + build consumer/ with CMAKE_PREFIX_PATH=the prefix, run it, check its output
 #   4. the same for sim_consumer/: palp::sim_inproc, a sim+inproc:// URI, a hold on the simulator
+#   5. when the install has palp::hdf5: hdf5_consumer/ writes and reads an HDF5 recording
 cmake_minimum_required(VERSION 3.25)
 foreach(v PALP_SOURCE_DIR PALP_BUILD_DIR PALP_VERSION CONSUMER_SOURCE SIM_CONSUMER_SOURCE WORK_DIR
         GENERATOR CXX_COMPILER)
@@ -73,3 +74,24 @@ foreach(expect "board palp-sim serial SIM-0001" "hold ended completed")
   endif()
 endforeach()
 message(STATUS "sim_consumer built against ${prefix} and ran:\n${step_output}")
+
+# palp::hdf5, installed only by a build that found HDF5
+file(GLOB_RECURSE hdf5_lib ${prefix}/*/libpalp_hdf5.a)
+if(hdf5_lib)
+  if(NOT EXISTS ${prefix}/include/palp/hdf5.hpp)
+    message(FATAL_ERROR "the install has libpalp_hdf5.a but not include/palp/hdf5.hpp")
+  endif()
+  set(hdf5_source ${CONSUMER_SOURCE}/../hdf5_consumer)
+  step("hdf5 consumer configure" ${CMAKE_COMMAND} -S ${hdf5_source} -B ${WORK_DIR}/hdf5_consumer
+       -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+       -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_BUILD_TYPE=Release)
+  step("hdf5 consumer build" ${CMAKE_COMMAND} --build ${WORK_DIR}/hdf5_consumer)
+  step("hdf5 consumer run" ${WORK_DIR}/hdf5_consumer/hdf5_consumer ${WORK_DIR}/run.h5)
+  string(FIND "${step_output}" "hdf5 recording rows 3 z_mm[2] 0.50" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "hdf5_consumer output lacks the recording read back:\n${step_output}")
+  endif()
+  message(STATUS "hdf5_consumer built against ${prefix} and ran:\n${step_output}")
+elseif(EXISTS ${prefix}/include/palp/hdf5.hpp)
+  message(FATAL_ERROR "the install has include/palp/hdf5.hpp without libpalp_hdf5.a")
+endif()
