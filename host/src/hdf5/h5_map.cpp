@@ -57,6 +57,43 @@ void write_map_analysis(hid_t parent, const Where& w, const StiffnessMap& m, con
   put_attr(g.get(), "contrast", a.contrast, w);
 }
 
+/// The touches of map.json's surface as rows x columns grids of `/map/surface` (its own numbers,
+/// exactly; NaN where a point was not touched or not mapped): the contact point and the normal
+/// in the work object's frame, and the tilt.
+void write_map_surface(hid_t parent, const Where& w, const StiffnessMap& m, const json& doc) {
+  const Id g = create_group(parent, w);
+  const auto rows = static_cast<std::size_t>(m.rows), columns = static_cast<std::size_t>(m.columns);
+  const json* points = nullptr;
+  if (const auto s = doc.find("surface"); s != doc.end() && s->is_object())
+    if (const auto p = s->find("points"); p != s->end() && p->is_array()) points = &*p;
+  struct Grid {
+    const char* name;
+    const char* key;
+    int index;  ///< into the key's array; -1: a number
+    const char* unit;
+  };
+  for (const Grid& grid : {Grid{"contact_x_mm", "contact_mm", 0, "mm"}, Grid{"contact_y_mm", "contact_mm", 1, "mm"},
+                           Grid{"contact_z_mm", "contact_mm", 2, "mm"}, Grid{"normal_x", "normal", 0, "1"},
+                           Grid{"normal_y", "normal", 1, "1"}, Grid{"normal_z", "normal", 2, "1"},
+                           Grid{"tilt_deg", "tilt_deg", -1, "deg"}}) {
+    std::vector<double> v(rows * columns, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t n = 0; points != nullptr && n < points->size() && n < m.points.size(); ++n) {
+      const MapPoint& p = m.points[n];
+      const json& q = (*points)[n];
+      if (!p.surface.ok || !q.is_object() || p.row < 1 || p.row > m.rows || p.column < 1 || p.column > m.columns)
+        continue;
+      const auto f = q.find(grid.key);
+      if (f == q.end()) continue;
+      const json* x = grid.index < 0 ? &*f
+                      : f->is_array() && f->size() > static_cast<std::size_t>(grid.index) ? &(*f)[static_cast<std::size_t>(grid.index)]
+                                                                                          : nullptr;
+      if (x != nullptr && x->is_number())
+        v[static_cast<std::size_t>(p.row - 1) * columns + static_cast<std::size_t>(p.column - 1)] = x->get<double>();
+    }
+    put_grid(g.get(), grid.name, v, rows, columns, grid.unit, w);
+  }
+}
+
 const LoadedResult* result_of(const LoadedMap& m, const std::string& result_dir) {
   for (const auto& [dir, r] : m.results)
     if (dir == result_dir) return &r;
@@ -102,6 +139,7 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
     if (const auto settings = doc.find("settings"); settings != doc.end() && settings->is_object())
       put_json_scalars(s.get(), "", *settings, {"analysis"}, w.at("settings"));
     write_map_analysis(g.get(), w.at("analysis"), map, doc);
+    write_map_surface(g.get(), w.at("surface"), map, doc);
     const Where wp = w.at("points");
     const Id points = create_group(g.get(), wp);
     for (std::size_t k = 0; k < map.points.size(); ++k) {

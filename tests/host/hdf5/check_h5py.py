@@ -91,6 +91,9 @@ with h5py.File(os.path.join(fixture, "map.h5"), "r") as f:
     check(list(a["soft_rows"][:]) == [2] and list(a["stiff_rows"][:]) == [1], "soft/stiff rows")
     check(len(a["soft_columns"]) == 0 and len(a["stiff_columns"]) == 0, "no soft/stiff column")
     check(a.attrs["median_N_per_mm"] == 0.5 and a.attrs["contrast"] == 0.1, "/map/analysis attributes")
+    sx, sy = m["surface/contact_x_mm"][:], m["surface/contact_y_mm"][:]  # the touches: 10 mm per column/row
+    check(sx[0, 0] == 10.0 and sx[0, 1] == 20.0 and sx[1, 0] == 10.0 and np.isnan(sx[1, 1]), f"contact_x_mm {sx}")
+    check(sy[0, 0] == 10.0 and sy[0, 1] == 10.0 and sy[1, 0] == 20.0 and np.isnan(sy[1, 1]), f"contact_y_mm {sy}")
     check(sorted(m["points"].keys()) == ["r1_c1", "r1_c2", "r2_c1"], f"/map/points {list(m['points'].keys())}")
     p = m["points/r1_c1"]
     check(p.attrs["k_fd_N_per_mm"] == 0.5 and int(p.attrs["indented"]) == 1, "r1_c1 point attributes")

@@ -1,6 +1,7 @@
 """An independent reader of a real map: palp-hdf5-sim-map mapped a 2 x 2 grid on palp-sim into
 DIR/map and exported DIR/map.h5; Debian's h5py reads the file and its values equal what the
-directory says: map.json's k_fd per point in the grid and on each point, every point's samples
+directory says: map.json's k_fd per point in the grid and on each point, its touches in the
+surface grids, every point's samples
 equal to its CSV (Python's csv and float(), exact), each repetition's rows those of its rep.
 
 usage: /usr/bin/python3 check_h5py_map.py DIR"""
@@ -35,6 +36,12 @@ with h5py.File(os.path.join(root, "map.h5"), "r") as f:
     check(k.shape == (mj["rows"], mj["columns"]) == (2, 2), f"grid shape {k.shape}")
     check(text(m["analysis/k_fd_N_per_mm"].attrs["unit"]) == "N/mm", "grid unit")
     check(len(mj["points"]) == 4, f"{len(mj['points'])} points in map.json")
+    for sp in mj["surface"]["points"]:  # the surface grids hold map.json's touches exactly
+        r, c = sp["row"] - 1, sp["column"] - 1
+        for axis, name in enumerate(("x", "y", "z")):
+            check(m["surface/contact_" + name + "_mm"][r, c] == sp["contact_mm"][axis], f"surface {name} at {r + 1},{c + 1}")
+            check(m["surface/normal_" + name][r, c] == sp["normal"][axis], f"normal {name} at {r + 1},{c + 1}")
+        check(m["surface/tilt_deg"][r, c] == sp["tilt_deg"], f"tilt at {r + 1},{c + 1}")
     for pt in mj["points"]:
         name = f"r{pt['row']}_c{pt['column']}"
         g = m["points"][name]
