@@ -84,9 +84,8 @@ void write_map_surface(hid_t parent, const Where& w, const StiffnessMap& m, cons
         continue;
       const auto f = q.find(grid.key);
       if (f == q.end()) continue;
-      const json* x = grid.index < 0 ? &*f
-                      : f->is_array() && f->size() > static_cast<std::size_t>(grid.index) ? &(*f)[static_cast<std::size_t>(grid.index)]
-                                                                                          : nullptr;
+      const auto at = static_cast<std::size_t>(grid.index);
+      const json* x = grid.index < 0 ? &*f : f->is_array() && f->size() > at ? &(*f)[at] : nullptr;
       if (x != nullptr && x->is_number())
         v[static_cast<std::size_t>(p.row - 1) * columns + static_cast<std::size_t>(p.column - 1)] = x->get<double>();
     }
@@ -145,14 +144,14 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
     for (std::size_t k = 0; k < map.points.size(); ++k) {
       const MapPoint& p = map.points[k];
       const Where wq = wp.at(point_group_name(p));
-      const LoadedResult* r = p.result_dir.empty() ? nullptr : result_of(m, p.result_dir);
+      const LoadedResult* r = p.indented && !p.result_dir.empty() ? result_of(m, p.result_dir) : nullptr;
       if (r != nullptr) write_result_group(points.get(), wq, *r);
       const Id q = r != nullptr ? open_group(points.get(), point_group_name(p).c_str(), wp) : create_group(points.get(), wq);
       put_attr(q.get(), "row", static_cast<std::int64_t>(p.row), wq);  // typed alike whatever JSON made them
       put_attr(q.get(), "column", static_cast<std::int64_t>(p.column), wq);
       put_attr(q.get(), "indented", static_cast<std::int64_t>(p.indented ? 1 : 0), wq);
       put_json_scalars(q.get(), "", doc["points"][k], {}, wq);  // k_fd_N_per_mm, reason, result_dir, ...
-      if (const std::string* why = p.result_dir.empty() ? nullptr : damage_of(m, p.result_dir))
+      if (const std::string* why = r != nullptr || p.result_dir.empty() ? nullptr : damage_of(m, p.result_dir))
         put_attr(q.get(), "damaged", std::string_view(*why), wq);
     }
   });
