@@ -123,9 +123,14 @@ json log_scale(const std::string& name, const Extent& e, Range range) {
           {"nice", false}};
 }
 
-json colour_scale(const std::string& name, const std::vector<std::string>& labels) {
+json colour_scale(const std::string& name, const std::vector<std::string>& labels,
+                  const std::vector<std::string>& colours) {
+  if (!colours.empty() && colours.size() != labels.size())
+    throw std::invalid_argument("vega::colour_scale: " + std::to_string(labels.size()) +
+                                " labels, " + std::to_string(colours.size()) + " colours");
   json range = json::array();
-  for (std::size_t i = 0; i < labels.size(); ++i) range.push_back(colour(static_cast<int>(i)));
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    range.push_back(colours.empty() ? colour(static_cast<int>(i)) : colours[i]);
   return {{"name", name}, {"type", "ordinal"}, {"domain", labels}, {"range", range}};
 }
 
@@ -249,7 +254,10 @@ json corner_text(const std::vector<std::string>& lines, const std::string& corne
   const bool right = corner.find("right") != std::string::npos;
   const bool bottom = corner.find("bottom") != std::string::npos;
   json enter = {{"x", right ? json{{"signal", "width"}, {"offset", -6}} : json{{"value", 6}}},
-                {"y", bottom ? json{{"signal", "height"}, {"offset", -6}} : json{{"value", 6}}},
+                // a multi-line text grows downwards from y: lift it by its lines
+                {"y", bottom ? json{{"signal", "height"},
+                                    {"offset", -6 - 14 * (static_cast<int>(lines.size()) - 1)}}
+                             : json{{"value", 6}}},
                 {"text", {{"value", lines}}},
                 {"align", {{"value", right ? "right" : "left"}}},
                 {"baseline", {{"value", bottom ? "bottom" : "top"}}},
@@ -274,13 +282,20 @@ void add_tooltip(json& mark, const std::vector<std::pair<std::string, std::strin
 void add_mark(json& spec, json mark) { spec["marks"].push_back(std::move(mark)); }
 
 json legend(const std::string& colour_scale, const std::string& title, const std::string& orient,
-            const std::string& symbol) {
+            const std::string& symbol, int columns) {
   json l = {{"stroke", colour_scale},
             {"orient", orient},
             {"symbolType", symbol},
             {"symbolStrokeWidth", 2},
-            {"fillColor", "rgba(255,255,255,0.85)"},
-            {"padding", 4}};
+            {"labelLimit", 0},
+            {"columnPadding", 14},
+            {"padding", 2}};
+  if (orient == "right" || orient == "left") {
+    l["direction"] = "vertical";
+  } else {
+    l["direction"] = "horizontal";
+    if (columns > 0) l["columns"] = columns;
+  }
   if (!title.empty()) l["title"] = title;
   return l;
 }
@@ -352,7 +367,7 @@ json heat_map(int rows_n, int columns, const std::vector<HeatCell>& cells,
                           {"gradientThickness", 14}});
   json rect = {
       {"type", "rect"},
-      {"name", "cells"},
+      {"name", "heat_cells"},
       {"from", {{"data", "cells"}}},
       {"encode",
        {{"enter",

@@ -60,8 +60,11 @@ json linear_scale(const std::string& name, const Extent& e, Range range, bool ze
                   bool nice = true, double pad = 0.02);
 /// Log scale (base 10) over the positive part of the extent.
 json log_scale(const std::string& name, const Extent& e, Range range);
-/// Ordinal colour scale "name": the palette over the given labels (a legend can use it).
-json colour_scale(const std::string& name, const std::vector<std::string>& labels);
+/// Ordinal colour scale "name" over the given labels (a legend can use it): their colours, or
+/// the palette in order when `colours` is empty. Throws std::invalid_argument when the counts
+/// differ.
+json colour_scale(const std::string& name, const std::vector<std::string>& labels,
+                  const std::vector<std::string>& colours = {});
 void add_scale(json& spec, json scale);
 
 /// An axis with its title (the unit in it: "δ (mm)"), a grid, and an optional tick count and
@@ -80,7 +83,8 @@ struct Stroke {
   double opacity = 1.0;
 };
 /// A line through a data set's rows in their order (points with a null x or y are left out).
-/// "name" is the mark's name (shows as its role-mark class "mark-line" plus the name in the SVG).
+/// "name" is the mark's name: unique in the spec and never a data set's name (Vega makes a data
+/// set of every named mark).
 json line(const std::string& data, const std::string& x_scale, const std::string& x_field,
           const std::string& y_scale, const std::string& y_field, const Stroke& stroke,
           const std::string& name = {});
@@ -114,10 +118,12 @@ json corner_text(const std::vector<std::string>& lines, const std::string& corne
 void add_tooltip(json& mark, const std::vector<std::pair<std::string, std::string>>& fields);
 void add_mark(json& spec, json mark);
 
-/// A legend of coloured line entries (the labels in palette order), at the plot's top-left
-/// inside by default.
+/// A legend of the colour scale's entries drawn as `symbol` ("stroke": short lines), outside the
+/// plot above it by default (so it hides no data), in rows of `columns` entries ("right": one
+/// column beside the plot). Labels are not truncated.
 json legend(const std::string& colour_scale, const std::string& title = {},
-            const std::string& orient = "top-left", const std::string& symbol = "stroke");
+            const std::string& orient = "top", const std::string& symbol = "stroke",
+            int columns = 3);
 
 /// Palette (colour-blind safe, Okabe–Ito order, then greys); index wraps around.
 std::string colour(int index);
@@ -142,7 +148,7 @@ struct HeatMapStyle {
 };
 /// A heat map of rows x columns cells (row 1 at the top): data "cells" (row, column, value,
 /// label, plus each cell's extra), band scales "x" (columns) and "y" (rows), a sequential colour
-/// scale "colour" with a gradient legend (the colour bar), a rect mark "cells" with a hover
+/// scale "colour" with a gradient legend (the colour bar), a rect mark "heat_cells" with a hover
 /// tooltip, and the cell labels. Throws std::invalid_argument for rows or columns < 1 or a cell
 /// outside the grid.
 json heat_map(int rows, int columns, const std::vector<HeatCell>& cells,

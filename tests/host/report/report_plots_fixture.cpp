@@ -1,0 +1,40 @@
+// palp-report-plots-fixture DIR: writes the known synthetic results (report_plots_synth.hpp)
+// under DIR, builds their report sections and writes each figure's Vega spec as DIR/<id>.json,
+// for vega-to-svg.js and check_svg.js (the report_plots.svg.* tests).
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+
+#include "report/sections.hpp"
+#include "report_plots_synth.hpp"
+
+namespace {
+
+void write_specs(const std::filesystem::path& dir, const palp::report::Section& s) {
+  for (const auto& f : s.figures) std::ofstream(dir / (f.id + ".json")) << f.spec.dump(1) << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: palp-report-plots-fixture DIR\n");
+    return 2;
+  }
+  try {
+    namespace rt = palp_test::report;
+    const std::filesystem::path dir = argv[1];
+    std::filesystem::create_directories(dir);
+    const auto indentation = palp::load_result(rt::write_known_indentation(dir / "indentation"));
+    write_specs(dir, palp::report::indentation_section(indentation));
+    write_specs(dir, palp::report::pressure_section(indentation));
+    write_specs(dir, palp::report::identification_section(
+                         palp::load_result(rt::write_known_identification(dir / "identification"))));
+    write_specs(dir, palp::report::trace_section(rt::known_trace()));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "palp-report-plots-fixture: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,33 @@
+// Known synthetic results for the report's figure tests (report-plots): an indentation of a
+// Hertz specimen with known E* and pressure channels of known slope (test_result_synth.hpp's
+// run, written as a result directory), an identification of a second-order system with known
+// omega_n and zeta, and a traced surface with known heights and tilts.
+#pragma once
+
+#include <filesystem>
+
+#include "palp/result.hpp"
+#include "palp/trace.hpp"
+
+namespace palp_test::report {
+
+/// The indentation: palp_test::synthetic_run() (E* = 125.8 kPa, z_c = 25 mm, 2 repetitions,
+/// channel m reading 20 m Pa per newton of F_o), written to dir.
+std::filesystem::path write_known_indentation(const std::filesystem::path& dir);
+
+/// The identification's truth: G = 1 / (m s^2 + b s + k).
+inline constexpr double kM_kg = 0.16, kK_N_per_m = 400.0, kZeta = 0.2;
+double known_omega_n();  ///< sqrt(k / m) = 50 rad/s
+double known_b();        ///< 2 zeta sqrt(k m)
+/// Lines from 0.5 to 40 Hz (f_n = 7.96 Hz), noise-free G with sigma = 2 % of |G| at 8 Hz,
+/// analysed (fit_second_order), with free_air and viscoelastic blocks, written to dir with
+/// write_identification_result.
+std::filesystem::path write_known_identification(const std::filesystem::path& dir);
+
+/// A complete 4 x 5 trace: z = 10 + 0.5 (column - 1) mm (a plane tilted about the y axis by
+/// atan(0.5 / 10) = 2.862 deg, columns 10 mm apart), every normal tilted by that angle; the
+/// point (row 2, column 3) failed ("no contact within 15.000 mm of travel").
+palp::TracedSurface known_trace();
+inline constexpr double kTraceTiltDeg = 2.8624052261117479;
+
+}  // namespace palp_test::report
