@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <complex>
+#include <unistd.h>
 
 #include "palp/analysis/dynamics.hpp"
 #include "palp/analysis/second_order.hpp"
@@ -12,6 +13,25 @@ namespace palp_test::report {
 
 namespace fs = std::filesystem;
 namespace an = palp::analysis;
+
+double interpolate(const nlohmann::json& rows, const std::string& x_field,
+                   const std::string& y_field, double x) {
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const double x0 = rows[k - 1][x_field], x1 = rows[k][x_field];
+    if (x0 <= x && x <= x1) {
+      const double y0 = rows[k - 1][y_field], y1 = rows[k][y_field];
+      return x1 == x0 ? y0 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);
+    }
+  }
+  throw std::out_of_range(x_field + " = " + std::to_string(x) + " outside the data");
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("palp-report-plots-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
 
 fs::path write_known_indentation(const fs::path& dir) {
   return palp::write_result(dir, palp_test::synthetic_run(), palp::Overwrite::yes);

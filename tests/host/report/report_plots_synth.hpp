@@ -5,6 +5,10 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "palp/result.hpp"
 #include "palp/trace.hpp"
@@ -29,5 +33,17 @@ std::filesystem::path write_known_identification(const std::filesystem::path& di
 /// point (row 2, column 3) failed ("no contact within 15.000 mm of travel").
 palp::TracedSurface known_trace();
 inline constexpr double kTraceTiltDeg = 2.8624052261117479;
+
+/// A figure spec's embedded data set `name` (its "values"); std::out_of_range when absent.
+inline const nlohmann::json& data_values(const nlohmann::json& spec, const std::string& name) {
+  for (const auto& d : spec.at("data"))
+    if (d.at("name") == name) return d.at("values");
+  throw std::out_of_range("no data set \"" + name + "\" in the spec");
+}
+/// The linear interpolation of a data set's y_field at x (rows in increasing x).
+double interpolate(const nlohmann::json& rows, const std::string& x_field,
+                   const std::string& y_field, double x);
+/// A fresh temporary directory for one test (removed and created again).
+std::filesystem::path fresh_dir(const std::string& name);
 
 }  // namespace palp_test::report
