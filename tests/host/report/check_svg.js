@@ -54,7 +54,9 @@ function* walk(el) {
 }
 
 const classes = el => (el.attrs.class || '').split(/\s+/);
-const allText = el => [...walk(el)].filter(e => e.tag === 'text').map(e => e.text.trim());
+// every <text>'s content; a multi-line text's lines (its <tspan>s) one by one
+const allText = el => [...walk(el)].filter(e => e.tag === 'text').flatMap(
+    e => e.children.some(c => c.tag === 'tspan') ? e.children.map(c => c.text.trim()) : [e.text.trim()]);
 
 // A tick label as a number: d3's minus sign (U+2212), thousands separators and SI suffixes
 // (k, M, m, µ, n) are read; anything else (a word) is not a number.
