@@ -104,12 +104,15 @@ Curves curves_of(const an::Frf& frf, const std::optional<Model>& model) {
       c.mmag_dB.push_back(dB(std::abs(mG.back())));
     }
     c.mphase = unwrapped_deg(mG);
-    // the same branch as the measurement (both start near 0 deg for a passive system)
-    if (!c.phase.empty()) {
-      const double shift = 360.0 * std::round((c.phase.front() - c.mphase[static_cast<std::size_t>(
-                                                  std::lower_bound(c.mf.begin(), c.mf.end(), c.f.front()) -
-                                                  c.mf.begin())]) / 360.0);
-      for (double& p : c.mphase) p += shift;
+    // each measured phase on the model's branch (a noisy line past resonance would otherwise
+    // carry the unwrapping off by 360°)
+    for (std::size_t k = 0; k < c.phase.size(); ++k) {
+      const double at = c.mphase[static_cast<std::size_t>(
+          std::lower_bound(c.mf.begin(), c.mf.end(), c.f[k]) - c.mf.begin())];
+      const double shift = 360.0 * std::round((at - c.phase[k]) / 360.0);
+      c.phase[k] += shift;
+      c.phase_lo[k] += shift;
+      c.phase_hi[k] += shift;
     }
   }
   return c;

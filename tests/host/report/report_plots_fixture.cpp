@@ -1,10 +1,13 @@
-// palp-report-plots-fixture DIR: writes the known synthetic results (report_plots_synth.hpp)
-// under DIR, builds their report sections and writes each figure's Vega spec as DIR/<id>.json,
-// for vega-to-svg.js and check_svg.js (the report_plots.svg.* tests).
+// palp-report-plots-fixture DIR [--paper-like]: writes the known synthetic results
+// (report_plots_synth.hpp) under DIR, builds their report sections and writes each figure's Vega
+// spec as DIR/<id>.json, for vega-to-svg.js and check_svg.js (the report_plots.svg.* tests).
+// --paper-like: the noisier examples instead, for people to look at (render them with
+// vega-to-svg.js); no test checks them.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "report/sections.hpp"
 #include "report_plots_synth.hpp"
@@ -18,19 +21,22 @@ void write_specs(const std::filesystem::path& dir, const palp::report::Section& 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: palp-report-plots-fixture DIR\n");
+  const bool paper_like = argc == 3 && std::string(argv[2]) == "--paper-like";
+  if (argc != 2 && !paper_like) {
+    std::fprintf(stderr, "usage: palp-report-plots-fixture DIR [--paper-like]\n");
     return 2;
   }
   try {
     namespace rt = palp_test::report;
     const std::filesystem::path dir = argv[1];
     std::filesystem::create_directories(dir);
-    const auto indentation = palp::load_result(rt::write_known_indentation(dir / "indentation"));
+    const auto indentation = palp::load_result(paper_like ? rt::write_paper_like_indentation(dir / "indentation")
+                                                          : rt::write_known_indentation(dir / "indentation"));
     write_specs(dir, palp::report::indentation_section(indentation));
     write_specs(dir, palp::report::pressure_section(indentation));
-    write_specs(dir, palp::report::identification_section(
-                         palp::load_result(rt::write_known_identification(dir / "identification"))));
+    const auto id = paper_like ? rt::write_paper_like_identification(dir / "identification")
+                               : rt::write_known_identification(dir / "identification");
+    write_specs(dir, palp::report::identification_section(palp::load_result(id)));
     write_specs(dir, palp::report::trace_section(rt::known_trace()));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palp-report-plots-fixture: %s\n", e.what());

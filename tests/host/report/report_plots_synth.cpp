@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <complex>
+#include <random>
 #include <unistd.h>
 
 #include "palp/analysis/dynamics.hpp"
 #include "palp/analysis/second_order.hpp"
 #include "palp/identification_result.hpp"
+#include "palp/indent.hpp"
+#include "test_analysis_synth.hpp"
 #include "test_result_synth.hpp"
 
 namespace palp_test::report {
@@ -40,7 +43,9 @@ fs::path write_known_indentation(const fs::path& dir) {
 double known_omega_n() { return std::sqrt(kK_N_per_m / kM_kg); }
 double known_b() { return 2.0 * kZeta * std::sqrt(kK_N_per_m * kM_kg); }
 
-fs::path write_known_identification(const fs::path& dir) {
+namespace {
+
+fs::path write_identification(const fs::path& dir, double noise_fraction) {
   constexpr double kPi = 3.14159265358979323846;
   an::Frf frf;
   frf.method = "stepped_sine";
@@ -49,8 +54,12 @@ fs::path write_known_identification(const fs::path& dir) {
     const double w = 2 * kPi * f;
     return 1.0 / std::complex<double>(kK_N_per_m - kM_kg * w * w, known_b() * w);
   };
-  const double sigma = 0.02 * std::abs(G(8.0));
-  for (double f = 0.5; f <= 40.0 + 1e-9; f += 0.5) frf.lines.push_back({f, G(f), sigma, {}, {}, 0});
+  // σ: the noise added, or 2 % of the resonance's |G| for the noise-free lines
+  const double sigma = (noise_fraction > 0 ? noise_fraction : 0.02) * std::abs(G(8.0));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, noise_fraction * std::abs(G(8.0)));
+  for (double f = 0.5; f <= 40.0 + 1e-9; f += 0.5)
+    frf.lines.push_back({f, G(f) + std::complex<double>(noise(rng), noise(rng)), sigma, {}, {}, 0});
   const an::SecondOrderFit fit = an::fit_second_order(frf.lines);
 
   palp::IdentificationRun run;
@@ -72,6 +81,62 @@ fs::path write_known_identification(const fs::path& dir) {
   a["params"] = {{"mv_kg", inst.m_v_kg}, {"bv_N_s_per_m", inst.b_v_N_s_per_m}, {"kv_N_per_mm", 0.0439}};
   a["viscoelastic"] = palp::viscoelastic_json(an::viscoelastic_from(frf.lines, inst, 1.0e-3, 2.5e-3));
   return palp::write_identification_result(dir, run, a, palp::Overwrite::yes);
+}
+
+}  // namespace
+
+fs::path write_known_identification(const fs::path& dir) { return write_identification(dir, 0.0); }
+
+fs::path write_paper_like_identification(const fs::path& dir) { return write_identification(dir, 0.005); }
+
+fs::path write_paper_like_indentation(const fs::path& dir) {
+  an::test::SynthSpec spec;
+  spec.object_force = [](double d) {
+    return d > 0 ? 4.0 / 3.0 * palp_test::kEstar * std::sqrt(palp_test::kR) * std::pow(d, 1.5) : 0.0;
+  };
+  spec.contact_z_m = 25e-3;
+  spec.i_top_A = 1.5;
+  spec.i_step_A = 0.01;
+  spec.reps = 3;
+  spec.samples_per_level = 25;
+  spec.noise_A = 3e-3;
+  spec.quantum_m = 1e-6;
+  spec.natural_Hz = 10.0;
+  spec.command_column = true;
+  const an::Curve c = an::test::synth_curve(spec);
+  palp::IndentationRun run;
+  run.settings = palp::IndentationSettings::preset(palp::IndentationPreset::two_d);
+  run.settings.stop_A = 1.5;
+  run.settings.step_A = 0.01;
+  run.device.serial = "SYNTH-0002";
+  run.program.repetitions_done = 3;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.5);
+  double previous_i = 0;
+  bool unloading = false;
+  for (Eigen::Index k = 0; k < c.z_m.size(); ++k) {
+    palp::RecordingRow row;
+    row.sample_index = static_cast<std::uint64_t>(k);
+    row.t_s = 1e-3 * static_cast<double>(k);
+    row.i_cmd_A = c.i_cmd_A[k];
+    row.i_A = c.i_A[k];
+    row.z_mm = c.z_m[k] * 1e3;
+    row.rep = c.rep[k] - 1;
+    if (k > 0 && c.rep[k] != c.rep[k - 1]) unloading = false;
+    if (c.i_cmd_A[k] < previous_i) unloading = true;
+    previous_i = c.i_cmd_A[k];
+    const double Fo = spec.object_force(c.z_m[k] - spec.contact_z_m);
+    // channels 1..6: 60, 25, 10, 15, 35, 90 Pa/N, reading 8 % higher on the way back
+    const double slopes[6] = {60, 25, 10, 15, 35, 90};
+    for (std::size_t m = 0; m < 6; ++m)
+      row.p_Pa[m] = slopes[m] * Fo * (unloading ? 1.08 : 1.0) + noise(rng);
+    run.recording.append(row);
+  }
+  palp::Sidecar side;
+  side.program = {{"kind", "ramp"}};
+  run.recording.sidecar = side;
+  palp::analyze_run(run);
+  return palp::write_result(dir, run, palp::Overwrite::yes);
 }
 
 palp::TracedSurface known_trace() {

@@ -43,6 +43,13 @@ inline const nlohmann::json& data_values(const nlohmann::json& spec, const std::
 /// The linear interpolation of a data set's y_field at x (rows in increasing x).
 double interpolate(const nlohmann::json& rows, const std::string& x_field,
                    const std::string& y_field, double x);
+/// Paper-like examples to look at (not checked by the tests): a 3-repetition staircase of 25
+/// samples per level at 1 kHz on a Hertz specimen with current noise and the coil ringing at
+/// 10 Hz (Fig. 6(a)'s protocol), channels 1 and 6 with a loading/unloading gap (Fig. 5(c)), and
+/// a second-order response with measurement noise (Fig. 4(d)).
+std::filesystem::path write_paper_like_indentation(const std::filesystem::path& dir);
+std::filesystem::path write_paper_like_identification(const std::filesystem::path& dir);
+
 /// A fresh temporary directory for one test (removed and created again).
 std::filesystem::path fresh_dir(const std::string& name);
 
