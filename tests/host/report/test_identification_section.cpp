@@ -134,3 +134,23 @@ TEST(IdentificationSectionErrors, AMissingFrequencyResponseIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(IdentificationSectionWithoutFit, DrawsTheMeasuredPointsWithoutAModel) {
+  const auto dir = palp_test::report::fresh_dir("identification-no-fit");
+  const auto path = palp_test::report::write_known_identification(dir / "r");
+  auto loaded = palp::load_result(path);
+  loaded.summary["analysis"] = nullptr;
+  loaded.summary["analysis_reason"] = "too few lines";
+  const auto s = palp::report::identification_section(loaded);
+  ASSERT_EQ(s.figures.size(), 2u);  // no moduli without an analysis
+  EXPECT_THAT(s.text, testing::HasSubstr("No second-order fit in result.json: too few lines"));
+  for (const auto& f : s.figures) {
+    EXPECT_EQ(palp_test::report::data_values(f.spec, "measured").size(), 80u);
+    EXPECT_TRUE(palp_test::report::data_values(f.spec, "model").empty());
+  }
+  EXPECT_EQ(s.figures[1].spec["scales"][1]["domain"], nlohmann::json::array({-180.0, 0.0}));
+}
+
+}  // namespace

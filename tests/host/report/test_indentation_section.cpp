@@ -149,3 +149,19 @@ TEST(IndentationSectionErrors, AnotherExperimentIsRefusedNamingIt) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(IndentationSectionWithoutFit, GivesTheAnalysisReasonAndTheTableButNoFigure) {
+  palp::IndentationRun run = palp_test::synthetic_run();
+  for (auto& i : run.recording.i_A) i = 0.3;  // never above I_c = 0.5 A: no contact
+  palp::analyze_run(run);
+  const auto dir = palp_test::report::fresh_dir("indentation-no-fit");
+  const auto s = palp::report::indentation_section(palp::load_result(palp::write_result(dir / "r", run)));
+  EXPECT_TRUE(s.figures.empty());
+  EXPECT_THAT(s.text, testing::StartsWith("No force–depth figure: "));
+  EXPECT_GT(s.text.size(), std::string("No force–depth figure: ").size());  // with the reason
+  ASSERT_EQ(s.tables.size(), 1u);
+}
+
+}  // namespace
