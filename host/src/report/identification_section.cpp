@@ -206,8 +206,8 @@ json moduli_spec(const an::Viscoelastic& v) {
   std::vector<double> f, Es, El, tan;
   for (const auto& l : v.lines) {
     f.push_back(l.f_Hz);
-    Es.push_back(l.E_storage_Pa * 1e-3);
-    El.push_back(l.E_loss_Pa * 1e-3);
+    Es.push_back(l.E_storage_Pa);
+    El.push_back(l.E_loss_Pa);
     tan.push_back(l.tan_delta);
   }
   json s = vega::spec(kWidth, kHeight);
@@ -216,7 +216,7 @@ json moduli_spec(const an::Viscoelastic& v) {
   y.add(Es);
   y.add(El);
   t.add(tan);
-  vega::add_data(s, "moduli", vega::rows({{"f_Hz", f}, {"E_storage_kPa", Es}, {"E_loss_kPa", El},
+  vega::add_data(s, "moduli", vega::rows({{"f_Hz", f}, {"E_storage_Pa", Es}, {"E_loss_Pa", El},
                                           {"tan_delta", tan}}));
   vega::add_scale(s, vega::log_scale("x", x, vega::Range::width));
   vega::add_scale(s, vega::linear_scale("y", y, vega::Range::height, true));
@@ -225,11 +225,11 @@ json moduli_spec(const an::Viscoelastic& v) {
   const std::vector<std::string> colours = {vega::colour(0), vega::colour(1), vega::colour(2)};
   vega::add_scale(s, vega::colour_scale("series", labels, colours));
   s["axes"].push_back(vega::axis("x", "bottom", "f (Hz)"));
-  s["axes"].push_back(vega::axis("y", "left", "E′, E″ (kPa)"));
+  s["axes"].push_back(vega::axis("y", "left", "E′, E″ (Pa)", 0, ",d"));  // 120,000
   s["axes"].push_back(vega::axis("t", "right", "tan δ (1)", 0, {}, false));
   s["legends"].push_back(vega::legend("series"));
   const std::pair<const char*, const char*> series[] = {
-      {"E_storage_kPa", "y"}, {"E_loss_kPa", "y"}, {"tan_delta", "t"}};
+      {"E_storage_Pa", "y"}, {"E_loss_Pa", "y"}, {"tan_delta", "t"}};
   for (std::size_t k = 0; k < 3; ++k) {
     const std::string field = series[k].first, scale = series[k].second;
     vega::Stroke st{colours[k], 1.8, {}, 1.0};
@@ -237,8 +237,8 @@ json moduli_spec(const an::Viscoelastic& v) {
     vega::add_mark(s, vega::line("moduli", "x", "f_Hz", scale, field, st, field + "_line"));
     json pts = vega::symbols("moduli", "x", "f_Hz", scale, field, colours[k], 14, "circle",
                              field + "_points");
-    vega::add_tooltip(pts, {{"f (Hz)", "f_Hz"}, {"E′ (kPa)", "E_storage_kPa"},
-                            {"E″ (kPa)", "E_loss_kPa"}, {"tan δ", "tan_delta"}});
+    vega::add_tooltip(pts, {{"f (Hz)", "f_Hz"}, {"E′ (Pa)", "E_storage_Pa"},
+                            {"E″ (Pa)", "E_loss_Pa"}, {"tan δ", "tan_delta"}});
     vega::add_mark(s, std::move(pts));
   }
   std::vector<std::string> text = {"δ0 = " + format_number(v.delta0_m * 1e3) + " mm, contact radius a = " +
