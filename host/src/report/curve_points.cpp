@@ -1,6 +1,7 @@
 #include "report/curve_points.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace palp::report {
@@ -33,6 +34,24 @@ std::vector<PointGroup> plateau_groups(const analysis::Curve& c, int max_per_rep
     groups.back().samples.push_back(k);
   }
   return groups;
+}
+
+std::vector<Level> levels_over_repetitions(const analysis::Curve& c,
+                                           const std::vector<PointGroup>& groups) {
+  std::vector<Level> levels;
+  if (c.i_cmd_A.size() != c.z_m.size()) return levels;
+  // keyed by branch and current (to the microampere: the ramp's levels are float set-points)
+  std::map<std::pair<int, long long>, std::size_t> index;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const double i = c.i_cmd_A[groups[g].samples.front()];
+    const auto key = std::make_pair(groups[g].loading ? 0 : 1, std::llround(i * 1e6) * (groups[g].loading ? 1 : -1));
+    auto [it, fresh] = index.emplace(key, levels.size());
+    if (fresh) levels.push_back({groups[g].loading, i, {}});
+    levels[it->second].groups.push_back(g);
+  }
+  std::vector<Level> ordered;
+  for (const auto& [key, at] : index) ordered.push_back(std::move(levels[at]));
+  return ordered;
 }
 
 double group_mean(const Eigen::VectorXd& v, const PointGroup& g) {

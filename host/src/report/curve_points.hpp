@@ -21,6 +21,17 @@ struct PointGroup {
 };
 std::vector<PointGroup> plateau_groups(const analysis::Curve& c, int max_per_rep = 600);
 
+/// The plateaus of one commanded current on one branch, one from each repetition: a mean ± s.d.
+/// over repetitions there (the paper's Fig. 5(c)). Loading levels upwards, then unloading
+/// downwards. Empty without the commanded-current column.
+struct Level {
+  bool loading = false;
+  double i_cmd_A = 0;
+  std::vector<std::size_t> groups;  ///< indices into plateau_groups' result
+};
+std::vector<Level> levels_over_repetitions(const analysis::Curve& c,
+                                           const std::vector<PointGroup>& groups);
+
 /// The mean of v over a group's samples.
 double group_mean(const Eigen::VectorXd& v, const PointGroup& g);
 

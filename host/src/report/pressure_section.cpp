@@ -8,6 +8,7 @@
 // the result: ΔV uses the paper's shallow channel (Ø5 mm x 90 mm with 50 cm of 1/16 in tube,
 // ChannelGeometry's defaults), as the caption says.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ json pressure_force_spec(const IndentationRun& run, const an::PressureResult& pr
   const an::Curve c = curve_of(run.recording);
   const Eigen::VectorXd Fo = an::object_force_N(c, run.settings.analysis, pr.contact_z_m);
   const auto groups = plateau_groups(c);
+  const auto levels = levels_over_repetitions(c, groups);
   json s = vega::spec(560, 360);
   vega::Extent x, y;
   std::vector<std::string> labels, colours;
@@ -47,30 +49,55 @@ json pressure_force_spec(const IndentationRun& run, const an::PressureResult& pr
     const std::vector<double>* p = channel_column(run.recording, ch.channel);
     if (!p) continue;
     const Eigen::VectorXd pv = Eigen::Map<const Eigen::VectorXd>(p->data(), static_cast<Eigen::Index>(p->size()));
-    std::vector<double> F, P, loading;
-    for (const auto& g : groups) {
-      // the regression's samples: at or above the contact current (F >= 0)
-      if (group_mean(c.i_A, g) < run.settings.analysis.contact_current_A) continue;
-      F.push_back(group_mean(Fo, g));
-      P.push_back(group_mean(pv, g));
-      loading.push_back(g.loading ? 1.0 : 0.0);
+    // mean ± s.d. over repetitions at each level of the staircase, or each plateau without one
+    std::vector<double> F, P, lo, hi, loading;
+    const auto add = [&](const std::vector<std::size_t>& members, bool load) {
+      double f = 0, m = 0, ss = 0;
+      for (std::size_t g : members) {
+        f += group_mean(Fo, groups[g]);
+        m += group_mean(pv, groups[g]);
+      }
+      const double count = static_cast<double>(members.size());
+      f /= count;
+      m /= count;
+      for (std::size_t g : members) ss += (group_mean(pv, groups[g]) - m) * (group_mean(pv, groups[g]) - m);
+      const double sd = members.size() > 1 ? std::sqrt(ss / (count - 1)) : 0.0;
+      F.push_back(f);
+      P.push_back(m);
+      lo.push_back(m - sd);
+      hi.push_back(m + sd);
+      loading.push_back(load ? 1.0 : 0.0);
+    };
+    const auto below_contact = [&](const PointGroup& g) {  // the regression's samples: F >= 0
+      return group_mean(c.i_A, g) < run.settings.analysis.contact_current_A;
+    };
+    if (!levels.empty()) {
+      for (const auto& level : levels)
+        if (!below_contact(groups[level.groups.front()])) add(level.groups, level.loading);
+    } else {
+      for (std::size_t g = 0; g < groups.size(); ++g)
+        if (!below_contact(groups[g])) add({g}, groups[g].loading);
     }
     x.add(F);
-    y.add(P);
+    y.add(lo);
+    y.add(hi);
     const std::string id = "p" + std::to_string(ch.channel);
     const std::string colour = vega::colour(static_cast<int>(n));
-    vega::add_data(s, id, vega::rows({{"F_o_N", F}, {"p_Pa", P}, {"loading", loading}}));
+    vega::add_data(s, id, vega::rows({{"F_o_N", F}, {"p_Pa", P}, {"lo_Pa", lo}, {"hi_Pa", hi},
+                                      {"loading", loading}}));
+    point_marks.push_back(vega::error_bars(id, "x", "F_o_N", "y", "lo_Pa", "hi_Pa", colour, id + "_sd"));
     json pts = vega::symbols(id, "x", "F_o_N", "y", "p_Pa", colour, 14, "circle", id + "_points");
     // unloading points hollow: the loop between the branches is the channel's hysteresis
     pts["encode"]["enter"]["fillOpacity"] = {{"signal", "datum.loading ? 0.6 : 0"}};
-    vega::add_tooltip(pts, {{"F_o (N)", "F_o_N"}, {"p (Pa)", "p_Pa"}});
+    vega::add_tooltip(pts, {{"F_o (N)", "F_o_N"}, {"p (Pa)", "p_Pa"}, {"mean − s.d. (Pa)", "lo_Pa"},
+                            {"mean + s.d. (Pa)", "hi_Pa"}});
     point_marks.push_back(std::move(pts));
     std::string label = "p" + std::to_string(ch.channel);
     if (ch.fit.slope && ch.fit.intercept) {
       const double a = *ch.fit.slope.value, b = *ch.fit.intercept.value;
-      const double lo = F.empty() ? 0.0 : *std::min_element(F.begin(), F.end());
-      const double hi = F.empty() ? 1.0 : *std::max_element(F.begin(), F.end());
-      vega::add_data(s, id + "_fit", vega::rows({{"F_o_N", {lo, hi}}, {"p_Pa", {a * lo + b, a * hi + b}}}));
+      const double F_lo = F.empty() ? 0.0 : *std::min_element(F.begin(), F.end());
+      const double F_hi = F.empty() ? 1.0 : *std::max_element(F.begin(), F.end());
+      vega::add_data(s, id + "_fit", vega::rows({{"F_o_N", {F_lo, F_hi}}, {"p_Pa", {a * F_lo + b, a * F_hi + b}}}));
       line_marks.push_back(vega::line(id + "_fit", "x", "F_o_N", "y", "p_Pa", {colour, 2.0, {}, 1.0},
                                       id + "_regression"));
       label += ": " + format_number(a, 4) + " Pa/N, R² = " + opt(ch.fit.r2, 1.0, 5);
@@ -134,9 +161,9 @@ Section pressure_section(const LoadedResult& result) {
   s.text = std::to_string(run.pressure->channels.size()) + " channels against the object force F_o "
            "(depth origin z_c = " + format_number(run.pressure->contact_z_m * 1e3, 6) + " mm).";
   s.figures.push_back({"pressure-force", "Channel pressure against object force",
-                       "Each channel's gauge pressure against F_o (the staircase's plateau means; "
-                       "filled: loading, hollow: unloading) with its least-squares line over the "
-                       "loading branch, its slope and R².",
+                       "Each channel's gauge pressure against F_o, mean ± s.d. over repetitions at "
+                       "each current level of the staircase (filled: loading, hollow: unloading), "
+                       "with its least-squares line over the loading branch, its slope and R².",
                        fig::pressure_force_spec(run, *run.pressure)});
   s.tables.push_back(fig::pressure_table(*run.pressure));
   return s;

@@ -36,9 +36,12 @@ TEST_F(PressureSection, EachChannelsPointsAndRegressionLineHaveItsKnownSlope) {
     const std::string id = "p" + std::to_string(m);
     const double slope = 20.0 * m;
     const json& pts = data_values(spec, id);
-    ASSERT_GT(pts.size(), 150u) << id;
-    for (const auto& r : pts)  // F_o from the fitted z_c, within a few mN of the true one
+    ASSERT_EQ(pts.size(), 201u) << id;  // 101 loading and 100 unloading levels of 10 mA
+    for (const auto& r : pts) {  // F_o from the fitted z_c, within a few mN of the true one
       EXPECT_NEAR(r["p_Pa"].get<double>(), slope * r["F_o_N"].get<double>(), 0.004 * slope) << id;
+      // one point per level, the mean of the two identical repetitions: no spread
+      EXPECT_NEAR(r["hi_Pa"].get<double>() - r["lo_Pa"].get<double>(), 0.0, 1e-9) << id;
+    }
     const json& line = data_values(spec, id + "_fit");
     ASSERT_EQ(line.size(), 2u);
     const double fitted = (line[1]["p_Pa"].get<double>() - line[0]["p_Pa"].get<double>()) /
