@@ -49,10 +49,9 @@ std::string model_colour(an::Model m) {
   return vega::colour(6);
 }
 
-// A repetition's grey, darker for later ones (they stay apart without competing with the fits).
-std::string rep_colour(std::size_t index, std::size_t count) {
+// A repetition's grey (the repetitions stay apart without competing with the fits' colours).
+std::string rep_colour(std::size_t index) {
   static const char* greys[] = {"#9a9a9a", "#7a7a7a", "#b4b4b4", "#5f5f5f", "#c8c8c8"};
-  (void)count;
   return greys[index % (sizeof greys / sizeof *greys)];
 }
 
@@ -108,7 +107,7 @@ json force_depth_figure_spec(const Frame& f) {
     vega::add_data(s, data, vega::rows({{"delta_mm", d}, {"F_o_N", F}, {"loading", loading}}));
     const std::string label = "repetition " + std::to_string(r + 1);
     labels.push_back(label);
-    colours.push_back(rep_colour(r, reps.size()));
+    colours.push_back(rep_colour(r));
     rep_marks.push_back(vega::line(data, "x", "delta_mm", "y", "F_o_N",
                                    {colours.back(), 1.0, {}, 0.8}, data + "_line"));
     json pts = vega::symbols(data, "x", "delta_mm", "y", "F_o_N", colours.back(), 16, "circle",

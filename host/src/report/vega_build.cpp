@@ -380,6 +380,13 @@ json heat_map(int rows_n, int columns, const std::vector<HeatCell>& cells,
            {{"signal", "{'row': datum.row, 'column': datum.column, '" + style.value_title +
                            "': isValid(datum.value) ? format(datum.value, '" + style.format +
                            "') : 'no value'}"}}}}}}}};
+  const bool links = std::any_of(cells.begin(), cells.end(), [](const HeatCell& c) {
+    return c.extra.is_object() && c.extra.contains("href");
+  });
+  if (links) {
+    rect["encode"]["enter"]["href"] = {{"field", "href"}};
+    rect["encode"]["enter"]["cursor"] = {{"value", "pointer"}};
+  }
   add_mark(s, std::move(rect));
   if (style.cell_labels) {
     json label = {
@@ -399,6 +406,59 @@ json heat_map(int rows_n, int columns, const std::vector<HeatCell>& cells,
     add_mark(s, std::move(label));
   }
   return s;
+}
+
+namespace {
+
+void outline(json& spec, const std::vector<int>& indices, bool columns, const std::string& colour,
+             const std::string& label, const std::string& name) {
+  const std::string scale = columns ? "x" : "y";
+  json values = json::array();
+  for (int i : indices) values.push_back({{"index", i}});
+  add_data(spec, name + "_data", values);
+  const json along = {{"scale", scale}, {"field", "index"}};
+  const json across_start = {{"value", -3}};
+  const json across_end = {{"signal", columns ? "height + 3" : "width + 3"}};
+  json enter = {{columns ? "x" : "y", along},
+                {columns ? "width" : "height", {{"scale", scale}, {"band", 1}}},
+                {columns ? "y" : "x", across_start},
+                {columns ? "y2" : "x2", across_end},
+                {"stroke", {{"value", colour}}},
+                {"strokeWidth", {{"value", 2.5}}},
+                {"fillOpacity", {{"value", 0}}}};
+  add_mark(spec, {{"type", "rect"}, {"name", name}, {"from", {{"data", name + "_data"}}},
+                  {"encode", {{"enter", enter}}}});
+  if (label.empty()) return;
+  json text_enter = {{"text", {{"value", label}}},
+                     {"fill", {{"value", colour}}},
+                     {"fontSize", {{"value", 10}}},
+                     {"fontWeight", {{"value", "bold"}}}};
+  if (columns) {
+    text_enter["x"] = {{"scale", "x"}, {"field", "index"}, {"band", 0.5}};
+    text_enter["y"] = {{"signal", "height + 14"}};
+    text_enter["align"] = {{"value", "center"}};
+  } else {
+    text_enter["y"] = {{"scale", "y"}, {"field", "index"}, {"band", 0.5}};
+    text_enter["x"] = {{"signal", "width + 6"}};
+    text_enter["baseline"] = {{"value", "middle"}};
+    // the colour bar stands right of the grid: move it clear of the labels
+    for (auto& l : spec["legends"])
+      l["offset"] = std::max(l.value("offset", 18), 12 + 7 * static_cast<int>(label.size()));
+  }
+  add_mark(spec, {{"type", "text"}, {"name", name + "_label"}, {"from", {{"data", name + "_data"}}},
+                  {"encode", {{"enter", text_enter}}}});
+}
+
+}  // namespace
+
+void outline_columns(json& heat_map_spec, const std::vector<int>& columns,
+                     const std::string& colour, const std::string& label, const std::string& name) {
+  outline(heat_map_spec, columns, true, colour, label, name);
+}
+
+void outline_rows(json& heat_map_spec, const std::vector<int>& rows, const std::string& colour,
+                  const std::string& label, const std::string& name) {
+  outline(heat_map_spec, rows, false, colour, label, name);
 }
 
 }  // namespace palp::report::vega

@@ -147,11 +147,20 @@ struct HeatMapStyle {
   std::string y_title = "row";
 };
 /// A heat map of rows x columns cells (row 1 at the top): data "cells" (row, column, value,
-/// label, plus each cell's extra), band scales "x" (columns) and "y" (rows), a sequential colour
-/// scale "colour" with a gradient legend (the colour bar), a rect mark "heat_cells" with a hover
-/// tooltip, and the cell labels. Throws std::invalid_argument for rows or columns < 1 or a cell
+/// shade (the value's place 0..1 in the colour scheme), plus each cell's extra), band scales "x"
+/// (columns) and "y" (rows), a sequential colour scale "colour" with a gradient legend (the
+/// colour bar), a rect mark "heat_cells" with a hover tooltip (and a link when the cells' extra
+/// hold "href": clicking a cell opens it, in the page and in the SVG), and the cell labels. Throws std::invalid_argument for rows or columns < 1 or a cell
 /// outside the grid.
 json heat_map(int rows, int columns, const std::vector<HeatCell>& cells,
               const HeatMapStyle& style);
+/// Outlines whole columns (or rows) of a heat_map spec, e.g. the map's soft and stiff ones: one
+/// rect per index around its cells (no fill), in `colour`, with `label` below a column (right of
+/// a row, moving the colour bar clear of it) in the same colour. A rect mark named `name` (one
+/// item per index) and a text mark `name`_label; data `name`_data.
+void outline_columns(json& heat_map_spec, const std::vector<int>& columns,
+                     const std::string& colour, const std::string& label, const std::string& name);
+void outline_rows(json& heat_map_spec, const std::vector<int>& rows, const std::string& colour,
+                  const std::string& label, const std::string& name);
 
 }  // namespace palp::report::vega

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
                                : rt::write_known_identification(dir / "identification");
     write_specs(dir, palp::report::identification_section(palp::load_result(id)));
     write_specs(dir, palp::report::trace_section(rt::known_trace()));
+    // the heat-map helper as the map's report uses it: soft columns 2, 5, 8 outlined
+    std::ofstream(dir / "heat-map-outlines.json") << rt::known_outlined_heat_map().dump(1) << '\n';
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palp-report-plots-fixture: %s\n", e.what());
     return 1;

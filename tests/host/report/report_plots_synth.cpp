@@ -9,6 +9,7 @@
 #include "palp/analysis/second_order.hpp"
 #include "palp/identification_result.hpp"
 #include "palp/indent.hpp"
+#include "report/vega_build.hpp"
 #include "test_analysis_synth.hpp"
 #include "test_result_synth.hpp"
 
@@ -34,6 +35,23 @@ fs::path fresh_dir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
+}
+
+nlohmann::json known_outlined_heat_map() {
+  namespace vega = palp::report::vega;
+  std::vector<vega::HeatCell> cells;
+  for (int r = 1; r <= 9; ++r)
+    for (int c = 1; c <= 9; ++c) {
+      const double k = (c == 2 || c == 5 || c == 8 ? 0.3 : 0.6) + 0.01 * r;
+      cells.push_back({r, c, k, {{"href", "#r" + std::to_string(r) + "c" + std::to_string(c)}}});
+    }
+  vega::HeatMapStyle style;
+  style.value_title = "k_fd (N/mm)";
+  style.format = ".2f";
+  nlohmann::json s = vega::heat_map(9, 9, cells, style);
+  vega::outline_columns(s, {2, 5, 8}, vega::colour(1), "soft", "soft_columns");
+  vega::outline_rows(s, {9}, vega::colour(0), "stiff", "stiff_rows");
+  return s;
 }
 
 fs::path write_known_indentation(const fs::path& dir) {

@@ -34,6 +34,11 @@ std::filesystem::path write_known_identification(const std::filesystem::path& di
 palp::TracedSurface known_trace();
 inline constexpr double kTraceTiltDeg = 2.8624052261117479;
 
+/// A 9 x 9 heat map (vega::heat_map) of k = 0.3 + 0.01 row N/mm in columns 2, 5, 8 and
+/// 0.6 + 0.01 row elsewhere, each cell linking to "#r<row>c<column>", columns 2, 5, 8 outlined
+/// "soft" and row 9 "stiff": the paper's Fig. 6(b) as the map's report draws it.
+nlohmann::json known_outlined_heat_map();
+
 /// A figure spec's embedded data set `name` (its "values"); std::out_of_range when absent.
 inline const nlohmann::json& data_values(const nlohmann::json& spec, const std::string& name) {
   for (const auto& d : spec.at("data"))

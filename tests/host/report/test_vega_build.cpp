@@ -63,3 +63,26 @@ TEST(VegaBuild, HeatMapRejectsACellOutsideTheGrid) {
   EXPECT_THROW(vega::heat_map(2, 2, {{3, 1, 1.0, {}}}, {}), std::invalid_argument);
   EXPECT_THROW(vega::heat_map(0, 2, {}, {}), std::invalid_argument);
 }
+
+TEST(VegaBuild, HeatMapCellsLinkWhereTheyHaveAnHrefAndOutlinesMarkWholeColumnsAndRows) {
+  std::vector<vega::HeatCell> cells;
+  for (int r = 1; r <= 3; ++r)
+    for (int c = 1; c <= 3; ++c) cells.push_back({r, c, 1.0 * c, {{"href", "#p" + std::to_string(r * 10 + c)}}});
+  vega::HeatMapStyle style;
+  style.value_title = "k_fd (N/mm)";
+  auto s = vega::heat_map(3, 3, cells, style);
+  EXPECT_EQ(s["marks"][0]["encode"]["enter"]["href"], (vega::json{{"field", "href"}}));
+  EXPECT_EQ(s["data"][0]["values"][4]["href"], "#p22");
+  vega::outline_columns(s, {2}, "#D55E00", "soft", "soft_columns");
+  vega::outline_rows(s, {1, 3}, "#0072B2", "stiff", "stiff_rows");
+  const auto data = [&](const std::string& name) {
+    for (const auto& d : s["data"])
+      if (d["name"] == name) return d["values"];
+    return vega::json();
+  };
+  EXPECT_EQ(data("soft_columns_data"), (vega::json::array({{{"index", 2}}})));
+  EXPECT_EQ(data("stiff_rows_data"), (vega::json::array({{{"index", 1}}, {{"index", 3}}})));
+  EXPECT_GT(s["legends"][0]["offset"].get<int>(), 18);  // the colour bar clear of "stiff"
+  // without links the cells carry none
+  EXPECT_FALSE(vega::heat_map(1, 1, {{1, 1, 1.0, {}}}, style)["marks"][0]["encode"]["enter"].contains("href"));
+}
