@@ -1,7 +1,7 @@
 // Small builders for Vega 5 specifications (the report's figures, palp/report.hpp): a spec with
 // its size, data sets embedded as "values", linear/log scales over domains computed here, axes
 // whose titles carry units, line / symbol / band / rule / text / error-bar marks, a colour
-// palette, and a heat map with a colour bar. Every builder returns plain JSON that the caller may
+// palette, and a heat map with a colour bar, links and outlined columns/rows. Every builder returns plain JSON that the caller may
 // extend; nothing needs a browser to render (tooltips only add hover text in the page).
 //
 //   nlohmann::json s = vega::spec(560, 340);
@@ -10,7 +10,7 @@
 //   vega::add_scale(s, vega::linear_scale("x", x, vega::Range::width));
 //   vega::add_scale(s, vega::linear_scale("y", y, vega::Range::height));
 //   vega::add_axes(s, "x", "δ (mm)", "y", "F_o (N)");
-//   vega::add_mark(s, vega::line("curve", "x", "delta_mm", "y", "F_N", vega::colour(0)));
+//   vega::add_mark(s, vega::line("curve", "x", "delta_mm", "y", "F_N", {vega::colour(0)}));
 //
 // Data: rows() zips named columns into Vega's row objects; a value that is not finite is written
 // null, and line() / band() leave such points out (their "defined" channel), so a gap stays a
@@ -50,7 +50,8 @@ struct Extent {
   /// [lo, hi] widened by `pad` of the span on each side; [lo - 1, hi + 1] for a single value and
   /// [0, 1] when empty. For a log scale use log_domain().
   json domain(double pad = 0.0) const;
-  /// [lo, hi] of the positive values only, widened by the factor `pad` (lo / pad, hi * pad).
+  /// For a log scale: [lo / pad, hi * pad], lo replaced by hi / 10 when it is not positive;
+  /// [1, 10] when empty or nothing is positive (add only positive values for a log axis).
   json log_domain(double pad = 1.0) const;
 };
 
