@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -202,22 +203,47 @@ json phase_spec(const Curves& c, const json& a) {
   return s;
 }
 
-json moduli_spec(const an::Viscoelastic& v) {
-  std::vector<double> f, Es, El, tan;
+// A line whose noise leaves its contact stiffness k* = 2a (E′ + j E″) uncertain by more than
+// this fraction: 1/G's error is about σ/|G|² (N/m), against |k*|.
+constexpr double kNoisyFraction = 0.2;
+
+// The relative uncertainty of the contact stiffness at a viscoelastic line (0 when the measured
+// line carries no σ or is not in the table; infinite for a zero stiffness).
+double moduli_uncertainty(const an::Frf& frf, const an::ViscoelasticLine& v, double a_m) {
+  const double k = 2 * a_m * std::hypot(v.E_storage_Pa, v.E_loss_Pa);
+  for (const auto& l : frf.lines)
+    if (std::abs(l.f_Hz - v.f_Hz) <= 1e-9 * v.f_Hz && std::abs(l.G_m_per_N) > 0) {
+      const double sigma_k = l.sigma_m_per_N / std::norm(l.G_m_per_N);
+      return k > 0 ? sigma_k / k : std::numeric_limits<double>::infinity();
+    }
+  return 0.0;
+}
+
+json moduli_spec(const an::Viscoelastic& v, const an::Frf& frf) {
+  std::vector<double> f, Es, El, tan, noisy;
+  vega::Extent x, y, t, y_all, t_all;
   for (const auto& l : v.lines) {
     f.push_back(l.f_Hz);
     Es.push_back(l.E_storage_Pa);
     El.push_back(l.E_loss_Pa);
     tan.push_back(l.tan_delta);
+    noisy.push_back(moduli_uncertainty(frf, l, v.contact_radius_m) > kNoisyFraction ? 1.0 : 0.0);
+    for (auto* e : {&y_all, &y}) {
+      if (e == &y && noisy.back() != 0.0) continue;
+      e->add(l.E_storage_Pa);
+      e->add(l.E_loss_Pa);
+    }
+    t_all.add(l.tan_delta);
+    if (noisy.back() == 0.0) t.add(l.tan_delta);
   }
-  json s = vega::spec(kWidth, kHeight);
-  vega::Extent x, y, t;
+  // the axes span the trusted lines (all of them when none is)
+  if (y.empty()) y = y_all;
+  if (t.empty()) t = t_all;
   x.add(f);
-  y.add(Es);
-  y.add(El);
-  t.add(tan);
-  vega::add_data(s, "moduli", vega::rows({{"f_Hz", f}, {"E_storage_Pa", Es}, {"E_loss_Pa", El},
-                                          {"tan_delta", tan}}));
+  json s = vega::spec(kWidth, kHeight);
+  const json rows = vega::rows({{"f_Hz", f}, {"E_storage_Pa", Es}, {"E_loss_Pa", El},
+                                {"tan_delta", tan}, {"noisy", noisy}});
+  vega::add_data(s, "moduli", rows);
   vega::add_scale(s, vega::log_scale("x", x, vega::Range::width));
   vega::add_scale(s, vega::linear_scale("y", y, vega::Range::height, true));
   vega::add_scale(s, vega::linear_scale("t", t, vega::Range::height, true));
@@ -234,15 +260,22 @@ json moduli_spec(const an::Viscoelastic& v) {
     const std::string field = series[k].first, scale = series[k].second;
     vega::Stroke st{colours[k], 1.8, {}, 1.0};
     if (k == 2) st.dash = {5, 3};
-    vega::add_mark(s, vega::line("moduli", "x", "f_Hz", scale, field, st, field + "_line"));
+    json line = vega::line("moduli", "x", "f_Hz", scale, field, st, field + "_line");
+    line["encode"]["enter"]["defined"] = {{"signal", "!datum.noisy"}};  // broken at noisy lines
+    vega::add_mark(s, std::move(line));
     json pts = vega::symbols("moduli", "x", "f_Hz", scale, field, colours[k], 14, "circle",
                              field + "_points");
+    pts["encode"]["enter"]["fillOpacity"] = {{"signal", "datum.noisy ? 0 : 0.55"}};
+    pts["encode"]["enter"]["strokeOpacity"] = {{"signal", "datum.noisy ? 0.4 : 1"}};
     vega::add_tooltip(pts, {{"f (Hz)", "f_Hz"}, {"E′ (Pa)", "E_storage_Pa"},
                             {"E″ (Pa)", "E_loss_Pa"}, {"tan δ", "tan_delta"}});
     vega::add_mark(s, std::move(pts));
   }
   std::vector<std::string> text = {"δ0 = " + format_number(v.delta0_m * 1e3) + " mm, contact radius a = " +
                                    format_number(v.contact_radius_m * 1e3) + " mm"};
+  if (std::count(noisy.begin(), noisy.end(), 1.0) > 0)
+    text.push_back("○: noise > " + format_number(kNoisyFraction * 100) +
+                   " % of the contact stiffness (not on the lines or axes)");
   if (v.flagged) text.push_back("flagged: " + v.flag_reason);
   vega::add_mark(s, vega::corner_text(text, "bottom-right", v.flagged ? "#b00" : "#222", "moduli_text"));
   return s;
@@ -333,8 +366,11 @@ Section identification_section(const LoadedResult& result) {
     }
     s.figures.push_back({"identification-moduli", "Storage and loss moduli",
                          "E′(ω) and E″(ω) from the contact's dynamic stiffness with the instrument's "
-                         "m_v, b_v, k_v removed, over the Sneddon contact radius at δ0; tan δ = E″/E′.",
-                         fig::moduli_spec(v)});
+                         "m_v, b_v, k_v removed, over the Sneddon contact radius at δ0; tan δ = E″/E′. "
+                         "Hollow: lines whose noise σ/|G|² exceeds 20 % of the contact stiffness "
+                         "2a |E′ + j E″| (their moduli are mostly noise); the lines and axes leave "
+                         "them out.",
+                         fig::moduli_spec(v, frf)});
   }
   s.tables.push_back(fig::parameter_table(a));
   return s;

@@ -94,6 +94,24 @@ TEST_F(IdentificationSection, ModuliAreTheContactsKnownStiffnessOverTheContactDi
   }
 }
 
+TEST_F(IdentificationSection, ModuliOfLinesWhoseNoiseSwampsTheContactStiffnessAreMarkedAndLeftOffTheAxes) {
+  const json& s = spec("identification-moduli");
+  const double sigma = 0.02 * std::abs(G(8.0));
+  double trusted_max = 0;
+  for (const auto& p : data_values(s, "moduli")) {
+    const double f = p["f_Hz"], w = 2 * kPi * f;
+    // 1/G's error σ/|G|² against the contact stiffness |k′ + j k″| (k′, k″ as above)
+    const double k = std::hypot(rt::kK_N_per_m - 43.9 - (rt::kM_kg - 0.1609) * w * w, (rt::known_b() - 1.379) * w);
+    const bool noisy = sigma / std::norm(G(f)) / k > 0.2;
+    EXPECT_EQ(p["noisy"].get<double>(), noisy ? 1.0 : 0.0) << f;
+    if (!noisy) trusted_max = std::max(trusted_max, p["E_storage_Pa"].get<double>());
+  }
+  EXPECT_EQ(data_values(s, "moduli").front()["noisy"], 0.0);  // 0.5 Hz: σ/|G|² ~ 5 % of |k*|
+  EXPECT_EQ(data_values(s, "moduli").back()["noisy"], 1.0);   // 40 Hz: ~20 times |k*|
+  // the E axis spans the trusted lines (a 2 % pad)
+  EXPECT_NEAR(s["scales"][1]["domain"][1].get<double>(), trusted_max, 0.03 * trusted_max);
+}
+
 TEST_F(IdentificationSection, TheTableGivesOmegaNAndZetaWithTheirErrorsAndTheInstrument) {
   const auto& rows = section_->tables.at(0).rows;
   const auto find = [&](const std::string& q) {
