@@ -3,6 +3,8 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <system_error>
+#include <vector>
 #include <unistd.h>
 
 #include "palp/analysis/dynamics.hpp"
@@ -31,9 +33,18 @@ double interpolate(const nlohmann::json& rows, const std::string& x_field,
 }
 
 fs::path fresh_dir(const std::string& name) {
+  // removed when the test program ends
+  static struct Created {
+    std::vector<fs::path> dirs;
+    ~Created() {
+      std::error_code ec;
+      for (const auto& d : dirs) fs::remove_all(d, ec);
+    }
+  } created;
   const fs::path d = fs::temp_directory_path() / ("palp-report-plots-" + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(d);
   fs::create_directories(d);
+  created.dirs.push_back(d);
   return d;
 }
 

@@ -55,7 +55,7 @@ double interpolate(const nlohmann::json& rows, const std::string& x_field,
 std::filesystem::path write_paper_like_indentation(const std::filesystem::path& dir);
 std::filesystem::path write_paper_like_identification(const std::filesystem::path& dir);
 
-/// A fresh temporary directory for one test (removed and created again).
+/// A fresh temporary directory for one test (emptied; removed when the program ends).
 std::filesystem::path fresh_dir(const std::string& name);
 
 }  // namespace palp_test::report
