@@ -5,7 +5,8 @@
 // Debian 12's `require('vega')` fails on Node 20 (its index is ES-module source), so this loads
 // the built sub-packages from /usr/share/nodejs and registers their transforms as vega's own
 // index does. Without a canvas, text widths are estimated. Exit 1 with the spec's file name and
-// Vega's message when a spec does not parse or render.
+// Vega's message when a spec does not parse or render; exit 3 when node-vega's modules cannot be
+// loaded (palp's write_report_svgs says to install node-vega then).
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -22,7 +23,7 @@ function load(name) {
   } catch (e) {
     console.error(`vega-to-svg: cannot load ${name} from ${NODE_DIR} (Debian's node-vega): ` +
                   e.message.split('\n')[0]);
-    process.exit(1);
+    process.exit(3);
   }
 }
 const dataflow = load('vega-dataflow');

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "palp/map.hpp"
@@ -58,8 +59,10 @@ inline IndentationRun synth_linear_run(double k_N_per_m, double contact_z_m, int
 
 /// A rows x columns map in `dir` (complete; every touch at x = 10 mm per column, y = 20 mm per
 /// row, the arm pointing straight down the work object's z), each point a result directory of
-/// synth_linear_run with synth_k_N_per_m, written by write_result and save_map.
-inline StiffnessMap write_synth_map(const std::filesystem::path& dir, int rows, int columns, int reps) {
+/// synth_linear_run with k_N_per_m(row, column) (synth_k_N_per_m unless given), written by
+/// write_result and save_map.
+inline StiffnessMap write_synth_map(const std::filesystem::path& dir, int rows, int columns, int reps,
+                                    const std::function<double(int, int)>& k_N_per_m = synth_k_N_per_m) {
   StiffnessMap m;
   m.plan_name = "synthetic";
   m.rows = rows;
@@ -79,7 +82,7 @@ inline StiffnessMap write_synth_map(const std::filesystem::path& dir, int rows, 
       p.surface.tcp_at_rest = Pose{0.010 * c, 0.020 * r, 0.1, 0, 0, 0};
       p.surface.stroke_at_rest_m = 2e-3;
       p.result_dir = "points/r" + std::to_string(r) + "_c" + std::to_string(c);
-      const IndentationRun run = synth_linear_run(synth_k_N_per_m(r, c), 12e-3, reps);
+      const IndentationRun run = synth_linear_run(k_N_per_m(r, c), 12e-3, reps);
       write_result(dir / p.result_dir, run);
       p.indented = true;
       p.k_fd_N_per_m = run.analysis->k_fd_N_per_m.value;

@@ -1,0 +1,75 @@
+// The known map's report page (palp-report-fixture: 9 x 9, columns 2, 5 and 8 soft) in headless
+// Chromium from file://, one browser for every check: no console errors or exceptions while the
+// inlined Vega draws; every figure rendered an <svg>; the heat map marks columns 2, 5 and 8 soft
+// (the view's data and the drawn labels) and no row; clicking the cell at row 3, column 5 selects
+// it and its curve is drawn; a full-page screenshot that is not blank.
+//
+//   node test_report_page.js REPORT.html SHOT.png
+'use strict';
+const assert = require('assert');
+const path = require('path');
+const {launch} = require('../../browser/cdp.js');
+const {pngStats} = require('../../browser/png.js');
+
+const [html, shot] = process.argv.slice(2);
+if (!html || !shot) {
+  console.error('usage: node test_report_page.js REPORT.html SHOT.png');
+  process.exit(2);
+}
+
+(async () => {
+  const browser = await launch({width: 1280, height: 900});
+  try {
+    const page = await browser.newPage();
+    await page.goto('file://' + path.resolve(html));
+    await page.waitFor('window.palpFigures > 0 && window.palpRendered === window.palpFigures', 30000);
+    const figures = await page.evaluate(`[...document.querySelectorAll('div.vega')].map(d =>
+      ({id: d.dataset.figure, svg: !!d.querySelector('svg'), marks: d.querySelectorAll('svg path, svg text').length}))`);
+    assert.ok(figures.length >= 1, 'no figures in the page');
+    for (const f of figures) {
+      assert.ok(f.svg, `figure ${f.id} drew no <svg>`);
+      assert.ok(f.marks > 10, `figure ${f.id} drew ${f.marks} marks`);
+    }
+    assert.deepStrictEqual(page.errors, [], 'errors while drawing');
+
+    // the soft lines: in the view's data, and drawn as labels over those columns
+    const lines = await page.evaluate(`palpViews['map-stiffness'].data('lines')
+      .map(d => d.kind + ' ' + d.index + ' ' + d.label)`);
+    assert.deepStrictEqual(lines, ['column 2 soft', 'column 5 soft', 'column 8 soft']);
+    const labels = await page.evaluate(`[...document.querySelectorAll('#view-map-stiffness svg text')]
+      .filter(t => t.textContent === 'soft').length`);
+    assert.strictEqual(labels, 3, `${labels} 'soft' labels drawn`);
+    // the soft columns are the low end of the colour scale: every soft cell below every other
+    const k = await page.evaluate(`palpViews['map-stiffness'].data('points').map(p => [p.column, p.k])`);
+    const soft = k.filter(([c]) => [2, 5, 8].includes(c)).map(([, v]) => v);
+    const other = k.filter(([c]) => ![2, 5, 8].includes(c)).map(([, v]) => v);
+    assert.strictEqual(soft.length + other.length, 81);
+    assert.ok(Math.max(...soft) < Math.min(...other), `soft ${Math.max(...soft)} vs ${Math.min(...other)}`);
+
+    // a click on row 3, column 5 selects it and draws its curve
+    const at = await page.evaluate(`(() => {
+      document.getElementById('view-map-stiffness').scrollIntoView();
+      const v = palpViews['map-stiffness'], x = v.scale('x'), y = v.scale('y'), o = v.origin();
+      const r = document.querySelector('#view-map-stiffness svg').getBoundingClientRect();
+      return {x: r.left + o[0] + x(5) + x.bandwidth() / 2, y: r.top + o[1] + y(3) + y.bandwidth() / 2}; })()`);
+    for (const type of ['mousePressed', 'mouseReleased'])
+      await page.send('Input.dispatchMouseEvent', {type, x: at.x, y: at.y, button: 'left', clickCount: 1});
+    await page.waitFor(`(() => { const s = palpViews['map-stiffness'].signal('selected');
+      return s.row === 3 && s.column === 5; })()`, 5000);
+    await page.waitFor(`palpViews['map-stiffness'].data('detail').length > 20 &&
+      palpViews['map-stiffness'].data('detail').every(d => d.row === 3 && d.column === 5)`, 5000);
+    assert.deepStrictEqual(page.errors, [], 'errors after the click');
+
+    const s = pngStats(await page.screenshot(shot, {fullPage: true}));
+    assert.ok(s.distinctColours() > 100, `${s.distinctColours()} colours: a blank page?`);
+    const ink = s.fraction(([r, g, b]) => r < 200 || g < 200 || b < 200);
+    assert.ok(ink > 0.05, `only ${(100 * ink).toFixed(1)} % of the page is drawn`);
+    console.log(`ok: ${figures.length} figures, soft columns 2 5 8, click selects row 3 column 5, ` +
+                `${s.width}x${s.height} screenshot ${shot}`);
+  } finally {
+    await browser.close();
+  }
+})().catch(e => {
+  console.error(e.stack || String(e));
+  process.exit(1);
+});
