@@ -230,6 +230,8 @@ StiffnessMap map_from_json(const json& j, const std::string& f) {
     throw ConfigError(f + ": not a map (\"format\" is not \"palp.map/1\")");
   StiffnessMap m;
   format::read_fields(format::JsonSource(j, f), m, kMapFields);
+  if (const auto s = j.find("settings"); s != j.end() && !s->is_null())  // maps before it: defaults
+    m.settings = indentation_settings_from_json(*s, f + ": settings.");
   m.surface = detail::trace_from_json(j.value("surface", json()), f + ": surface");
   const auto pts = j.find("points");
   if (pts == j.end() || !pts->is_array()) throw ConfigError(f + ": \"points\" must be an array");
