@@ -64,6 +64,15 @@ set_target_properties(palp_protocol_text PROPERTIES EXPORT_NAME protocol_text)
 install(TARGETS palp_sdk palp_analysis palp_device palp_experiments palp_protocol palp_protocol_text
         EXPORT palpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
+# The reports (palp/report.hpp, docs/report.md): palp::report, and the SVG renderer that
+# write_report_svgs finds in <prefix>/share/palp/ beside <prefix>/bin/ (host/src/report/svg.cpp)
+if(TARGET palp_report)
+  set_target_properties(palp_report PROPERTIES EXPORT_NAME report)
+  install(TARGETS palp_report EXPORT palpTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT sdk)
+  install(FILES ${PROJECT_SOURCE_DIR}/host/report/vega-to-svg.js
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/palp COMPONENT tools)
+endif()
 # palp-sim linked in (component sim_inproc): palp/sim_inproc.hpp and sim+inproc:// URIs for a
 # lab's own tests and CI, with the simulator's libraries under it (the real firmware core, the
 # plant with its shipped phantoms built in, the robot bridge emulator). palp_sim_inproc is an

@@ -24,7 +24,7 @@ namespace {
 
 constexpr int kCellPx = 46;             ///< a grid cell's side
 constexpr int kDetailWidthPx = 380;     ///< the F_o–δ plot beside the map
-constexpr int kDetailGapPx = 150;       ///< room for the row marks and the colour bar
+constexpr int kDetailGapPx = 180;       ///< room for the row marks and the colour bar
 constexpr Eigen::Index kBlocksPerRepetition = 100;  ///< block means drawn per repetition
 
 /// A number rounded to `decimals` for the embedded data (short JSON).
@@ -303,6 +303,7 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
                             axis("dy", "left", "F_o (N)", {{"grid", true}, {"gridOpacity", 0.35}})})},
       {"legends", json::array({{{"stroke", "rep_colour"},
                                 {"title", "repetition"},
+                                {"symbolType", "stroke"},
                                 {"orient", "top-left"},
                                 {"offset", 6},
                                 {"fillColor", "rgba(255,255,255,0.85)"},
