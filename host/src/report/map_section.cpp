@@ -304,7 +304,7 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
       {"legends", json::array({{{"stroke", "rep_colour"},
                                 {"title", "repetition"},
                                 {"symbolType", "stroke"},
-                                {"orient", "top-left"},
+                                {"orient", "bottom-right"},
                                 {"offset", 6},
                                 {"fillColor", "rgba(255,255,255,0.85)"},
                                 {"padding", 4}}})},
@@ -449,8 +449,8 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
       const int index = static_cast<int>(i) + 1;
       const bool is_soft = std::find(soft.begin(), soft.end(), index) != soft.end();
       const bool is_stiff = std::find(stiff.begin(), stiff.end(), index) != stiff.end();
-      t.rows.push_back({std::string(kind) + " " + std::to_string(index), num(means[i] * 1e-3),
-                        median > 0 ? num(100.0 * (means[i] / median - 1.0), 3) : "–",
+      t.rows.push_back({std::string(kind) + " " + std::to_string(index), detail::fixed(means[i] * 1e-3, 3),
+                        median > 0 ? detail::fixed(100.0 * (means[i] / median - 1.0), 1, true) : "–",
                         is_soft ? "soft" : is_stiff ? "stiff" : ""});
     }
   };

@@ -29,10 +29,18 @@ std::string num(double v, int digits) {
   return buf;
 }
 
+std::string fixed(double v, int decimals, bool sign) {
+  if (!std::isfinite(v)) return "–";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, sign ? "%+.*f" : "%.*f", decimals, v);
+  return buf;
+}
+
 namespace {
 
 std::string text_of(const json& v) {
   if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return v.dump();  // a count or a hash: every digit
   if (v.is_number()) return num(v.get<double>(), 6);
   if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
   if (v.is_null()) return "–";

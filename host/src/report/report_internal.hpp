@@ -30,5 +30,7 @@ std::string indentation_settings_text(const nlohmann::json& parameters);
 
 /// A number with `digits` significant digits ("2.918", "0.0439", "1.26e+05").
 std::string num(double v, int digits = 4);
+/// A number with `decimals` decimals, with its sign when `sign` ("2.808", "+0.3", "-29.2").
+std::string fixed(double v, int decimals, bool sign = false);
 
 }  // namespace palp::report::detail
