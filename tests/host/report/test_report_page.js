@@ -1,8 +1,8 @@
 // The known map's report page (palp-report-fixture: 9 x 9, columns 2, 5 and 8 soft) in headless
 // Chromium from file://, one browser for every check: no console errors or exceptions while the
 // inlined Vega draws; every figure rendered an <svg>; the heat map marks columns 2, 5 and 8 soft
-// (the view's data and the drawn labels) and no row; clicking the cell at row 3, column 5 selects
-// it and its curve is drawn; a full-page screenshot that is not blank.
+// (the view's data and the drawn labels) and no row; hovering the cell at row 3, column 5 shows
+// its values, clicking it selects it and draws its curve; a full-page screenshot that is not blank.
 //
 //   node test_report_page.js REPORT.html SHOT.png
 'use strict';
@@ -52,6 +52,13 @@ if (!html || !shot) {
       const v = palpViews['map-stiffness'], x = v.scale('x'), y = v.scale('y'), o = v.origin();
       const r = document.querySelector('#view-map-stiffness svg').getBoundingClientRect();
       return {x: r.left + o[0] + x(5) + x.bandwidth() / 2, y: r.top + o[1] + y(3) + y.bandwidth() / 2}; })()`);
+    // hovering shows the point's values (Vega's tooltip: the title of the view's element)
+    await page.send('Input.dispatchMouseEvent', {type: 'mouseMoved', x: at.x - 100, y: at.y - 100});
+    await page.send('Input.dispatchMouseEvent', {type: 'mouseMoved', x: at.x, y: at.y});
+    const tip = await page.waitFor(`(() => { const e = document.querySelector('#view-map-stiffness[title], #view-map-stiffness [title]');
+      return e && e.getAttribute('title').includes('row 3, column 5') ? e.getAttribute('title') : ''; })()`, 5000);
+    for (const key of ['k_fd (N/mm)', 'δ0 (mm)', 'k_tangent (N/mm)', 'reason'])
+      assert.ok(tip.includes(key), `the tooltip has no ${key}: ${tip}`);
     for (const type of ['mousePressed', 'mouseReleased'])
       await page.send('Input.dispatchMouseEvent', {type, x: at.x, y: at.y, button: 'left', clickCount: 1});
     await page.waitFor(`(() => { const s = palpViews['map-stiffness'].signal('selected');
