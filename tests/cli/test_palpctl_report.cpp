@@ -54,10 +54,13 @@ TEST_F(PalpctlReport, AMapsPageAndSvgMarkColumns2_5_8SoftAndJsonNamesTheFiles) {
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j.at("html"), html.string());
-  EXPECT_EQ(j.at("svgs"), json::array({(svg / "map-stiffness.svg").string()}));
-  ASSERT_GE(j.at("sections").size(), 1u);
+  // the map, and the surface it was measured on (report-plots' trace section)
+  EXPECT_EQ(j.at("svgs"), json::array({(svg / "map-stiffness.svg").string(), (svg / "trace-heights.svg").string(),
+                                       (svg / "trace-tilts.svg").string()}));
+  ASSERT_EQ(j.at("sections").size(), 2u);
   EXPECT_EQ(j["sections"][0].at("id"), "map");
   EXPECT_EQ(j["sections"][0].at("figures"), json::array({"map-stiffness"}));
+  EXPECT_EQ(j["sections"][1].at("figures"), json::array({"trace-heights", "trace-tilts"}));
 
   const std::string page = read_file(html);
   EXPECT_EQ(page.rfind(palp::report::kReportHtmlHead, 0), 0u);
@@ -65,13 +68,13 @@ TEST_F(PalpctlReport, AMapsPageAndSvgMarkColumns2_5_8SoftAndJsonNamesTheFiles) {
   const std::size_t b = page.find(open);
   ASSERT_NE(b, std::string::npos);
   const json spec = json::parse(page.substr(b + open.size(), page.find("</script>", b) - b - open.size()));
-  json soft = json::array();
-  for (const json& d : spec.at("data"))
-    if (d.at("name") == "lines")
-      for (const json& l : d.at("values")) soft.push_back(l.at("kind").get<std::string>() + " " +
-                                                          std::to_string(l.at("index").get<int>()) + " " +
-                                                          l.at("label").get<std::string>());
-  EXPECT_EQ(soft, json::array({"column 2 soft", "column 5 soft", "column 8 soft"}));
+  json soft_columns, soft_rows;
+  for (const json& d : spec.at("data")) {
+    if (d.at("name") == "soft_columns_data") soft_columns = d.at("values");
+    if (d.at("name") == "soft_rows_data") soft_rows = d.at("values");
+  }
+  EXPECT_EQ(soft_columns, json::parse(R"([{"index": 2}, {"index": 5}, {"index": 8}])"));
+  EXPECT_EQ(soft_rows, json::array());
   EXPECT_EQ(read_file(svg / "map-stiffness.svg").rfind("<svg", 0), 0u);
 }
 

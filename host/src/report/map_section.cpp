@@ -13,6 +13,7 @@
 #include "palp/indent.hpp"
 #include "report/report_internal.hpp"
 #include "report/sections.hpp"
+#include "report/vega_build.hpp"
 
 namespace palp::report {
 
@@ -24,7 +25,7 @@ namespace {
 
 constexpr int kCellPx = 46;             ///< a grid cell's side
 constexpr int kDetailWidthPx = 380;     ///< the F_o–δ plot beside the map
-constexpr int kDetailGapPx = 180;       ///< room for the row marks and the colour bar
+constexpr int kDetailGapPx = 190;       ///< room for the row marks and the colour bar
 constexpr Eigen::Index kBlocksPerRepetition = 100;  ///< block means drawn per repetition
 
 /// A number rounded to `decimals` for the embedded data (short JSON).
@@ -103,12 +104,6 @@ std::string lines_text(const std::vector<int>& v) {
   return s;
 }
 
-json axis(const char* scale, const char* orient, const std::string& title, json extra = json::object()) {
-  json a = {{"scale", scale}, {"orient", orient}, {"title", title}, {"titleFontSize", 13}, {"labelFontSize", 11}};
-  a.update(extra);
-  return a;
-}
-
 }  // namespace
 
 Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const fs::path& dir) {
@@ -116,12 +111,12 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
     throw ConfigError(dir.string() + ": the map's grid is " + std::to_string(map.rows) + " x " +
                       std::to_string(map.columns) + " and its analysis' " + std::to_string(analysis.rows) + " x " +
                       std::to_string(analysis.columns) + "; nothing to draw");
-  const int W = map.columns * kCellPx, H = map.rows * kCellPx;
+  const int W = map.columns * kCellPx, H = map.rows * kCellPx;  // the grid's size in pixels
 
-  // the points, their curves, the lines that stand out
-  json points = json::array(), curves = json::array(), lines = json::array();
+  // the cells (k_fd and the point's other values), their curves
+  std::vector<vega::HeatCell> cells;
+  json curves = json::array();
   double range[4] = {0, 0, 0, 0};  // δ min, max (mm), F_o min, max (N): the detail plot's axes
-  double kmin = std::numeric_limits<double>::infinity(), kmax = -kmin;
   const MapPoint* first_with_curves = nullptr;
   for (const MapPoint& p : map.points) {
     if (p.row < 1 || p.row > map.rows || p.column < 1 || p.column > map.columns) continue;
@@ -129,166 +124,94 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
     // k in N/mm, NaN where the point has none
     const double k = at < analysis.k_N_per_m.size() ? analysis.k_N_per_m[at].value_or(NAN) * 1e-3 : NAN;
     const PointResult pr = point_result(p, dir, range);
-    const json& c = pr.curves;
-    const std::string& why = pr.why;
-    for (const json& rep : c) curves.push_back(rep);
-    if (!c.empty() && first_with_curves == nullptr) first_with_curves = &p;
+    for (const json& rep : pr.curves) curves.push_back(rep);
+    if (!pr.curves.empty() && first_with_curves == nullptr) first_with_curves = &p;
     std::string reason = p.reason;
     if (std::isnan(k) && !p.k_fd_reason.empty()) reason += (reason.empty() ? "" : "; ") + p.k_fd_reason;
-    if (!why.empty()) reason += (reason.empty() ? "" : "; ") + ("curves: " + why);
-    if (!std::isnan(k)) {
-      kmin = std::min(kmin, k);
-      kmax = std::max(kmax, k);
-    }
-    points.push_back({{"row", p.row},
-                      {"column", p.column},
-                      {"k", std::isnan(k) ? json(nullptr) : json(rounded(k, 4))},
-                      {"delta0", value_or(p.delta0_m, 1e3, pr.delta0_mm)},
-                      {"kt", value_or(p.k_tangent_N_per_m, 1e-3, pr.k_tangent_N_per_mm)},
-                      {"reason", reason.empty() ? "–" : reason}});
+    if (!pr.why.empty()) reason += (reason.empty() ? "" : "; ") + ("curves: " + pr.why);
+    vega::HeatCell c;
+    c.row = p.row;
+    c.column = p.column;
+    c.value = std::isnan(k) ? NAN : rounded(k, 4);
+    c.extra = {{"delta0", value_or(p.delta0_m, 1e3, pr.delta0_mm)},
+               {"kt", value_or(p.k_tangent_N_per_m, 1e-3, pr.k_tangent_N_per_mm)},
+               {"reason", reason.empty() ? "–" : reason}};
+    cells.push_back(std::move(c));
   }
-  for (const auto& [kind, label, v] : {std::tuple{"column", "soft", &analysis.soft_columns},
-                                       std::tuple{"column", "stiff", &analysis.stiff_columns},
-                                       std::tuple{"row", "soft", &analysis.soft_rows},
-                                       std::tuple{"row", "stiff", &analysis.stiff_rows}})
-    for (const int index : *v) lines.push_back({{"kind", kind}, {"label", label}, {"index", index}});
-  const bool any_k = std::isfinite(kmin);
-  const double kmid = any_k ? 0.5 * (kmin + kmax) : 0.0;
   const int sel_row = first_with_curves ? first_with_curves->row : 1;
   const int sel_column = first_with_curves ? first_with_curves->column : 1;
-  json row_domain = json::array(), column_domain = json::array();
-  for (int r = 1; r <= map.rows; ++r) row_domain.push_back(r);
-  for (int c = 1; c <= map.columns; ++c) column_domain.push_back(c);
   const double lo_mm = map.settings.analysis.window_lo_m * 1e3, hi_mm = map.settings.analysis.window_hi_m * 1e3;
 
-  const json line_stroke = {{"signal", "datum.label === 'soft' ? '#e8402f' : '#111111'"}};
-  json heat_marks = json::array({
-      {{"type", "rect"},
-       {"name", "cell"},
-       {"from", {{"data", "points"}}},
-       {"encode",
-        {{"enter",
-          {{"x", {{"scale", "x"}, {"field", "column"}}},
-           {"width", {{"scale", "x"}, {"band", 1}}},
-           {"y", {{"scale", "y"}, {"field", "row"}}},
-           {"height", {{"scale", "y"}, {"band", 1}}},
-           {"stroke", {{"value", "#ffffff"}}},
-           {"strokeWidth", {{"value", 1}}},
-           {"cursor", {{"value", "pointer"}}},
-           {"tooltip",
-            {{"signal",
-              "{'point': 'row ' + datum.row + ', column ' + datum.column, "
-              "'k_fd (N/mm)': datum.k === null ? '–' : format(datum.k, '.3f'), "
-              "'δ0 (mm)': datum.delta0 === null ? '–' : format(datum.delta0, '.3f'), "
-              "'k_tangent (N/mm)': datum.kt === null ? '–' : format(datum.kt, '.3f'), "
-              "'reason': datum.reason}"}}}}},
-         {"update",
-          {{"fill", json::array({{{"test", "datum.k === null"}, {"value", "#d4d4d4"}}, {{"scale", "color"}, {"field", "k"}}})},
-           {"opacity", json::array({{{"test", "hoverRow === datum.row && hoverColumn === datum.column"}, {"value", 0.8}},
-                                    {{"value", 1}}})}}}}}},
-      {{"type", "text"},
-       {"name", "cell-value"},
-       {"from", {{"data", "points"}}},
-       {"interactive", false},
-       {"encode",
-        {{"enter",
-          {{"x", {{"scale", "x"}, {"field", "column"}, {"band", 0.5}}},
-           {"y", {{"scale", "y"}, {"field", "row"}, {"band", 0.5}}},
-           {"align", {{"value", "center"}}},
-           {"baseline", {{"value", "middle"}}},
-           {"fontSize", {{"value", 10.5}}},
-           {"text", {{"signal", "datum.k === null ? '–' : format(datum.k, '.2f')"}}},
-           {"fill", {{"signal", "datum.k !== null && datum.k < " + num(kmid, 6) + " ? '#ffffff' : '#111111'"}}}}}}}},
-      {{"type", "rect"},
-       {"name", "marked-column"},
-       {"from", {{"data", "marked_columns"}}},
-       {"interactive", false},
-       {"encode",
-        {{"enter",
-          {{"x", {{"scale", "x"}, {"field", "index"}}},
-           {"width", {{"scale", "x"}, {"band", 1}}},
-           {"y", {{"value", 0}}},
-           {"y2", {{"signal", "height"}}},
-           {"fill", {{"value", "transparent"}}},
-           {"stroke", line_stroke},
-           {"strokeWidth", {{"value", 2.5}}},
-           {"strokeDash", {{"signal", "datum.label === 'soft' ? [] : [6, 3]"}}}}}}}},
-      {{"type", "text"},
-       {"name", "marked-column-label"},
-       {"from", {{"data", "marked_columns"}}},
-       {"interactive", false},
-       {"encode",
-        {{"enter",
-          {{"x", {{"scale", "x"}, {"field", "index"}, {"band", 0.5}}},
-           {"y", {{"value", -6}}},
-           {"align", {{"value", "center"}}},
-           {"fontSize", {{"value", 11}}},
-           {"fontWeight", {{"value", "bold"}}},
-           {"fill", line_stroke},
-           {"text", {{"field", "label"}}}}}}}},
-      {{"type", "rect"},
-       {"name", "marked-row"},
-       {"from", {{"data", "marked_rows"}}},
-       {"interactive", false},
-       {"encode",
-        {{"enter",
-          {{"y", {{"scale", "y"}, {"field", "index"}}},
-           {"height", {{"scale", "y"}, {"band", 1}}},
-           {"x", {{"value", 0}}},
-           {"x2", {{"signal", "width"}}},
-           {"fill", {{"value", "transparent"}}},
-           {"stroke", line_stroke},
-           {"strokeWidth", {{"value", 2.5}}},
-           {"strokeDash", {{"signal", "datum.label === 'soft' ? [] : [6, 3]"}}}}}}}},
-      {{"type", "text"},
-       {"name", "marked-row-label"},
-       {"from", {{"data", "marked_rows"}}},
-       {"interactive", false},
-       {"encode",
-        {{"enter",
-          {{"y", {{"scale", "y"}, {"field", "index"}, {"band", 0.5}}},
-           {"x", {{"signal", "width + 5"}}},
-           {"baseline", {{"value", "middle"}}},
-           {"fontSize", {{"value", 11}}},
-           {"fontWeight", {{"value", "bold"}}},
-           {"fill", line_stroke},
-           {"text", {{"field", "label"}}}}}}}},
-      {{"type", "rect"},
-       {"name", "selected-cell"},
-       {"from", {{"data", "selected_point"}}},
-       {"interactive", false},
-       {"encode",
-        {{"update",
-          {{"x", {{"scale", "x"}, {"field", "column"}}},
-           {"width", {{"scale", "x"}, {"band", 1}}},
-           {"y", {{"scale", "y"}, {"field", "row"}}},
-           {"height", {{"scale", "y"}, {"band", 1}}},
-           {"fill", {{"value", "transparent"}}},
-           {"stroke", {{"value", "#000000"}}},
-           {"strokeWidth", {{"value", 3.5}}}}}}}},
-  });
+  // the heat map (vega_build): rows down, columns across, the colour bar right of it; the soft
+  // lines outlined in red, the stiff ones in black
+  vega::HeatMapStyle style;
+  style.cell_px = kCellPx;
+  style.value_title = "k_fd (N/mm)";
+  style.format = ".2f";
+  json spec = vega::heat_map(map.rows, map.columns, cells, style);
+  constexpr const char* kSoft = "#D55E00";
+  constexpr const char* kStiff = "#000000";
+  vega::outline_columns(spec, analysis.soft_columns, kSoft, "soft", "soft_columns");
+  vega::outline_columns(spec, analysis.stiff_columns, kStiff, "stiff", "stiff_columns");
+  vega::outline_rows(spec, analysis.soft_rows, kSoft, "soft", "soft_rows");
+  vega::outline_rows(spec, analysis.stiff_rows, kStiff, "stiff", "stiff_rows");
+  // the colour bar right of the grid (and of the rows' labels), not right of the detail plot
+  for (json& l : spec["legends"]) {
+    l["legendX"] = W + l.value("offset", 18);
+    l["legendY"] = 0;
+    l["orient"] = "none";
+  }
+  spec["description"] = "k_fd heat map of a stiffness map, and the F_o–δ curves of the point selected";
+  // hover: every value of the point; click: select it (its curves drawn on the right)
+  for (json& m : spec["marks"]) {
+    if (m.value("name", "") != "heat_cells") continue;
+    m["encode"]["enter"]["cursor"] = {{"value", "pointer"}};
+    m["encode"]["enter"]["tooltip"] = {
+        {"signal",
+         "{'point': 'row ' + datum.row + ', column ' + datum.column, "
+         "'k_fd (N/mm)': isValid(datum.value) ? format(datum.value, '.3f') : '–', "
+         "'δ0 (mm)': isValid(datum.delta0) ? format(datum.delta0, '.3f') : '–', "
+         "'k_tangent (N/mm)': isValid(datum.kt) ? format(datum.kt, '.3f') : '–', "
+         "'reason': datum.reason}"}};
+  }
+  spec["signals"] = json::array({{{"name", "selected"},
+                                  {"value", {{"row", sel_row}, {"column", sel_column}}},
+                                  {"on", json::array({{{"events", "@heat_cells:click"},
+                                                       {"update", "{row: datum.row, column: datum.column}"}}})}}});
+  const std::string is_selected = "datum.row === selected.row && datum.column === selected.column";
+  vega::add_data(spec, "curves", curves);
+  spec["data"].push_back({{"name", "selected_cell"},
+                          {"source", "cells"},
+                          {"transform", json::array({{{"type", "filter"}, {"expr", is_selected}}})}});
+  spec["data"].push_back({{"name", "detail"},
+                          {"source", "curves"},
+                          {"transform", json::array({{{"type", "filter"}, {"expr", is_selected}},
+                                                     {{"type", "flatten"}, {"fields", json::array({"d", "f"})}}})}});
+  vega::add_mark(spec, {{"type", "rect"},
+                        {"name", "selected_outline"},
+                        {"from", {{"data", "selected_cell"}}},
+                        {"interactive", false},
+                        {"encode",
+                         {{"update",
+                           {{"x", {{"scale", "x"}, {"field", "column"}}},
+                            {"width", {{"scale", "x"}, {"band", 1}}},
+                            {"y", {{"scale", "y"}, {"field", "row"}}},
+                            {"height", {{"scale", "y"}, {"band", 1}}},
+                            {"fillOpacity", {{"value", 0}}},
+                            {"stroke", {{"value", "#000000"}}},
+                            {"strokeWidth", {{"value", 3.5}}}}}}}});
 
-  json heat = {
-      {"type", "group"},
-      {"name", "heat-map"},
-      {"encode", {{"enter", {{"x", {{"value", 0}}}, {"y", {{"value", 0}}}, {"width", {{"value", W}}}, {"height", {{"value", H}}}}}}},
-      {"title", {{"text", "k_fd per grid point"}, {"offset", 18}, {"fontSize", 13}}},
-      {"axes", json::array({axis("x", "bottom", "column", {{"domain", false}, {"ticks", false}}),
-                            axis("y", "left", "row", {{"domain", false}, {"ticks", false}})})},
-      {"legends", json::array({{{"fill", "color"},
-                                {"type", "gradient"},
-                                {"title", "k_fd (N/mm)"},
-                                {"orient", "right"},
-                                {"offset", 44},
-                                {"gradientLength", std::max(80, H - 30)},
-                                {"titleFontSize", 12},
-                                {"labelFontSize", 11},
-                                {"format", ".2f"}}})},
-      {"marks", heat_marks}};
-
+  // the selected point's curves, beside the map (its own scales, over every point's curves so
+  // that points compare; the top-level width stays the grid's, which the outlines use)
+  json rep_domain = json::array();
+  for (const json& c : curves)
+    if (std::find(rep_domain.begin(), rep_domain.end(), c["rep"]) == rep_domain.end()) rep_domain.push_back(c["rep"]);
+  std::sort(rep_domain.begin(), rep_domain.end());
+  json rep_colours = json::array();
+  for (std::size_t i = 0; i < rep_domain.size(); ++i) rep_colours.push_back(vega::colour(static_cast<int>(i)));
   json detail = {
       {"type", "group"},
-      {"name", "point-detail"},
+      {"name", "point_detail"},
       {"encode",
        {{"enter",
          {{"x", {{"value", W + kDetailGapPx}}},
@@ -296,102 +219,9 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
           {"width", {{"value", kDetailWidthPx}}},
           {"height", {{"value", H}}}}}}},
       {"title",
-       {{"text", {{"signal", "'F_o–δ at row ' + selected.row + ', column ' + selected.column"}}},
-        {"offset", 18},
-        {"fontSize", 13}}},
-      {"axes", json::array({axis("dx", "bottom", "δ (mm)", {{"grid", true}, {"gridOpacity", 0.35}}),
-                            axis("dy", "left", "F_o (N)", {{"grid", true}, {"gridOpacity", 0.35}})})},
-      {"legends", json::array({{{"stroke", "rep_colour"},
-                                {"title", "repetition"},
-                                {"symbolType", "stroke"},
-                                {"orient", "bottom-right"},
-                                {"offset", 6},
-                                {"fillColor", "rgba(255,255,255,0.85)"},
-                                {"padding", 4}}})},
-      {"marks",
-       json::array(
-           {{{"type", "rect"},
-             {"name", "kfd-window"},
-             {"interactive", false},
-             {"encode",
-              {{"enter",
-                {{"x", {{"scale", "dx"}, {"value", lo_mm}}},
-                 {"x2", {{"scale", "dx"}, {"value", hi_mm}}},
-                 {"y", {{"value", 0}}},
-                 {"y2", {{"signal", "height"}}},
-                 {"fill", {{"value", "#9fb7d9"}}},
-                 {"opacity", {{"value", 0.25}}}}}}}},
-            {{"type", "group"},
-             {"name", "repetition"},
-             {"from", {{"facet", {{"name", "rep_curve"}, {"data", "detail"}, {"groupby", "rep"}}}}},
-             {"marks",
-              json::array({{{"type", "line"},
-                            {"name", "curve"},
-                            {"from", {{"data", "rep_curve"}}},
-                            {"encode",
-                             {{"update",
-                               {{"x", {{"scale", "dx"}, {"field", "d"}}},
-                                {"y", {{"scale", "dy"}, {"field", "f"}}},
-                                {"stroke", {{"scale", "rep_colour"}, {"field", "rep"}}},
-                                {"strokeWidth", {{"value", 1.6}}}}}}}}})}}})}};
-
-  json spec = {
-      {"$schema", "https://vega.github.io/schema/vega/v5.json"},
-      {"description", "k_fd heat map of a stiffness map, and one point's F_o–δ curves"},
-      {"width", W + kDetailGapPx + kDetailWidthPx},
-      {"height", H},
-      {"padding", {{"left", 8}, {"right", 12}, {"top", 8}, {"bottom", 8}}},
-      {"autosize", {{"type", "pad"}}},
-      {"background", "#ffffff"},
-      {"config", {{"text", {{"font", "DejaVu Sans, Helvetica, Arial, sans-serif"}}},
-                  {"axis", {{"labelFont", "DejaVu Sans, Helvetica, Arial, sans-serif"},
-                            {"titleFont", "DejaVu Sans, Helvetica, Arial, sans-serif"}}},
-                  {"legend", {{"labelFont", "DejaVu Sans, Helvetica, Arial, sans-serif"},
-                              {"titleFont", "DejaVu Sans, Helvetica, Arial, sans-serif"}}},
-                  {"title", {{"font", "DejaVu Sans, Helvetica, Arial, sans-serif"}}}}},
-      {"signals",
-       json::array({{{"name", "selected"},
-                     {"value", {{"row", sel_row}, {"column", sel_column}}},
-                     {"on", json::array({{{"events", "@cell:click"},
-                                          {"update", "{row: datum.row, column: datum.column}"}}})}},
-                    {{"name", "hoverRow"},
-                     {"value", 0},
-                     {"on", json::array({{{"events", "@cell:mouseover"}, {"update", "datum.row"}},
-                                         {{"events", "@cell:mouseout"}, {"update", "0"}}})}},
-                    {{"name", "hoverColumn"},
-                     {"value", 0},
-                     {"on", json::array({{{"events", "@cell:mouseover"}, {"update", "datum.column"}},
-                                         {{"events", "@cell:mouseout"}, {"update", "0"}}})}}})},
-      {"data",
-       json::array({{{"name", "points"}, {"values", points}},
-                    {{"name", "lines"}, {"values", lines}},
-                    {{"name", "marked_columns"},
-                     {"source", "lines"},
-                     {"transform", json::array({{{"type", "filter"}, {"expr", "datum.kind === 'column'"}}})}},
-                    {{"name", "marked_rows"},
-                     {"source", "lines"},
-                     {"transform", json::array({{{"type", "filter"}, {"expr", "datum.kind === 'row'"}}})}},
-                    {{"name", "selected_point"},
-                     {"source", "points"},
-                     {"transform",
-                      json::array({{{"type", "filter"},
-                                    {"expr", "datum.row === selected.row && datum.column === selected.column"}}})}},
-                    {{"name", "curves"}, {"values", curves}},
-                    {{"name", "detail"},
-                     {"source", "curves"},
-                     {"transform",
-                      json::array({{{"type", "filter"},
-                                    {"expr", "datum.row === selected.row && datum.column === selected.column"}},
-                                   {{"type", "flatten"}, {"fields", json::array({"d", "f"})}}})}}})},
+       {{"text", {{"signal", "'F_o–δ at row ' + selected.row + ', column ' + selected.column"}}}, {"fontSize", 12}}},
       {"scales",
-       json::array({{{"name", "x"}, {"type", "band"}, {"domain", column_domain}, {"range", json::array({0, W})}},
-                    {{"name", "y"}, {"type", "band"}, {"domain", row_domain}, {"range", json::array({0, H})}},
-                    {{"name", "color"},
-                     {"type", "linear"},
-                     {"domain", any_k ? json::array({rounded(kmin, 4), rounded(kmax, 4)}) : json::array({0, 1})},
-                     {"range", {{"scheme", "viridis"}}},
-                     {"zero", false}},
-                    {{"name", "dx"},
+       json::array({{{"name", "dx"},
                      {"type", "linear"},
                      {"domain", json::array({rounded(range[0], 3), rounded(std::max(range[1], hi_mm), 3)})},
                      {"range", json::array({0, kDetailWidthPx})},
@@ -403,11 +233,36 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
                      {"range", json::array({H, 0})},
                      {"nice", true},
                      {"zero", true}},
-                    {{"name", "rep_colour"},
-                     {"type", "ordinal"},
-                     {"domain", {{"data", "curves"}, {"field", "rep"}, {"sort", true}}},
-                     {"range", {{"scheme", "tableau10"}}}}})},
-      {"marks", json::array({heat, detail})}};
+                    {{"name", "rep_colour"}, {"type", "ordinal"}, {"domain", rep_domain}, {"range", rep_colours}}})},
+      {"axes", json::array({vega::axis("dx", "bottom", "δ (mm)"), vega::axis("dy", "left", "F_o (N)")})},
+      {"legends", json::array({vega::legend("rep_colour", "repetition", "bottom-right")})},
+      {"marks",
+       json::array(
+           {{{"type", "rect"},
+             {"name", "kfd_window"},
+             {"interactive", false},
+             {"encode",
+              {{"enter",
+                {{"x", {{"scale", "dx"}, {"value", lo_mm}}},
+                 {"x2", {{"scale", "dx"}, {"value", hi_mm}}},
+                 {"y", {{"value", 0}}},
+                 {"y2", {{"value", H}}},
+                 {"fill", {{"value", "#9fb7d9"}}},
+                 {"opacity", {{"value", 0.25}}}}}}}},
+            {{"type", "group"},
+             {"name", "repetitions"},
+             {"from", {{"facet", {{"name", "rep_curve"}, {"data", "detail"}, {"groupby", "rep"}}}}},
+             {"marks",
+              json::array({{{"type", "line"},
+                            {"name", "curve"},
+                            {"from", {{"data", "rep_curve"}}},
+                            {"encode",
+                             {{"update",
+                               {{"x", {{"scale", "dx"}, {"field", "d"}}},
+                                {"y", {{"scale", "dy"}, {"field", "f"}}},
+                                {"stroke", {{"scale", "rep_colour"}, {"field", "rep"}}},
+                                {"strokeWidth", {{"value", 1.6}}}}}}}}})}}})}};
+  vega::add_mark(spec, std::move(detail));
 
   Section s;
   s.id = "map";
@@ -427,7 +282,7 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
   f.id = "map-stiffness";
   f.title = "k_fd heat map and one point's force–depth curves";
   f.caption = "Left: k_fd per grid point (N/mm; grey: no value), rows down and columns across; soft lines outlined "
-              "in red, stiff ones dashed black; the black square is the point drawn on the right. In the page, "
+              "in vermilion, stiff ones in black; the black square is the point drawn on the right. In the page, "
               "hover a cell for its k_fd, δ0, tangent stiffness and any reason, and click it to draw its curves. "
               "Right: F_o against δ = z − z_c of every repetition (" +
               std::to_string(kBlocksPerRepetition) + " block means each), the k_fd window " + num(lo_mm) + "–" +

@@ -72,24 +72,21 @@ TEST_F(MapReport, MarksExactlyColumns2_5_8SoftAndNoRow) {
   const Report& r = *report_;
   ASSERT_FALSE(r.sections.empty());
   EXPECT_EQ(r.sections[0].id, "map");
-  const json& lines = data(figure(r, "map-stiffness").spec, "lines").at("values");
-  ASSERT_EQ(lines.size(), 3u) << lines.dump();
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(lines[i].at("kind"), "column");
-    EXPECT_EQ(lines[i].at("label"), "soft");
-    EXPECT_EQ(lines[i].at("index"), std::vector<int>({2, 5, 8})[i]);
-  }
+  const json& spec = figure(r, "map-stiffness").spec;
+  EXPECT_EQ(data(spec, "soft_columns_data").at("values"), json::parse(R"([{"index": 2}, {"index": 5}, {"index": 8}])"));
+  for (const char* none : {"stiff_columns_data", "soft_rows_data", "stiff_rows_data"})
+    EXPECT_EQ(data(spec, none).at("values"), json::array()) << none;
   EXPECT_THAT(r.sections[0].text, HasSubstr("Soft columns: 2, 5, 8; stiff columns: none; soft rows: none"));
 }
 
 TEST_F(MapReport, EmbedsEveryPointsKnownStiffnessAndCurve) {
   const json& spec = figure(*report_, "map-stiffness").spec;
-  const json& points = data(spec, "points").at("values");
+  const json& points = data(spec, "cells").at("values");
   ASSERT_EQ(points.size(), 81u);
   for (const json& p : points) {
     const int row = p.at("row"), column = p.at("column");
     const double known_N_per_mm = palp::test::report_map_k_N_per_m(row, column) * 1e-3;
-    EXPECT_NEAR(p.at("k").get<double>(), known_N_per_mm, 0.03 * known_N_per_mm) << "row " << row << " column " << column;
+    EXPECT_NEAR(p.at("value").get<double>(), known_N_per_mm, 0.03 * known_N_per_mm) << "row " << row << " column " << column;
     EXPECT_TRUE(p.at("delta0").is_number());
   }
   const json& curves = data(spec, "curves").at("values");

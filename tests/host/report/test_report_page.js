@@ -33,14 +33,15 @@ if (!html || !shot) {
     assert.deepStrictEqual(page.errors, [], 'errors while drawing');
 
     // the soft lines: in the view's data, and drawn as labels over those columns
-    const lines = await page.evaluate(`palpViews['map-stiffness'].data('lines')
-      .map(d => d.kind + ' ' + d.index + ' ' + d.label)`);
-    assert.deepStrictEqual(lines, ['column 2 soft', 'column 5 soft', 'column 8 soft']);
+    const lines = await page.evaluate(`(() => { const v = palpViews['map-stiffness'];
+      return ['soft_columns', 'stiff_columns', 'soft_rows', 'stiff_rows']
+        .map(n => n + ':' + v.data(n + '_data').map(d => d.index).join(',')); })()`);
+    assert.deepStrictEqual(lines, ['soft_columns:2,5,8', 'stiff_columns:', 'soft_rows:', 'stiff_rows:']);
     const labels = await page.evaluate(`[...document.querySelectorAll('#view-map-stiffness svg text')]
       .filter(t => t.textContent === 'soft').length`);
     assert.strictEqual(labels, 3, `${labels} 'soft' labels drawn`);
     // the soft columns are the low end of the colour scale: every soft cell below every other
-    const k = await page.evaluate(`palpViews['map-stiffness'].data('points').map(p => [p.column, p.k])`);
+    const k = await page.evaluate(`palpViews['map-stiffness'].data('cells').map(p => [p.column, p.value])`);
     const soft = k.filter(([c]) => [2, 5, 8].includes(c)).map(([, v]) => v);
     const other = k.filter(([c]) => ![2, 5, 8].includes(c)).map(([, v]) => v);
     assert.strictEqual(soft.length + other.length, 81);
