@@ -81,7 +81,8 @@ PointResult point_result(const MapPoint& p, const fs::path& dir, double (&range)
         range[2] = std::min(range[2], fm);
         range[3] = std::max(range[3], fm);
       }
-      out.push_back({{"row", p.row}, {"column", p.column}, {"rep", c.rep.size() == 0 ? 0 : c.rep[b]}, {"d", d}, {"f", f}});
+      const int rep = (c.rep.size() == 0 ? 0 : c.rep[b]) + 1;  // 1-based, as the tables say
+      out.push_back({{"row", p.row}, {"column", p.column}, {"rep", rep}, {"d", d}, {"f", f}});
       b = e;
     }
   } catch (const Error& e) {
