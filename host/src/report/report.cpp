@@ -59,6 +59,22 @@ std::string pairs_text(const json& j, std::initializer_list<const char*> keys) {
   return out.empty() ? "–" : out;
 }
 
+/// Every scalar member of an object as "key value, ...", nested objects' members as
+/// "outer.key value" (arrays summarised by length): settings that have no summary of their own.
+std::string all_pairs_text(const json& j, const std::string& prefix = "") {
+  std::string out;
+  for (const auto& [k, v] : j.items()) {
+    std::string part;
+    if (v.is_object()) part = all_pairs_text(v, prefix + k + ".");
+    else if (v.is_array()) part = prefix + k + " " + (v.empty() ? "none" : std::to_string(v.size()) + " entries");
+    else part = prefix + k + " " + text_of(v);
+    if (part.empty()) continue;
+    if (!out.empty()) out += ", ";
+    out += part;
+  }
+  return out;
+}
+
 double number_or(const json& j, const char* key, double fallback) {
   const auto it = j.find(key);
   return it != j.end() && it->is_number() ? it->get<double>() : fallback;
@@ -106,7 +122,7 @@ HeaderLines result_header(const LoadedResult& r) {
   if (r.experiment == "indentation")
     h.emplace_back("Settings", indentation_settings_text(r.summary.value("parameters", json(nullptr))));
   else if (const auto p = r.summary.find("parameters"); p != r.summary.end() && p->is_object())
-    h.emplace_back("Settings", p->dump());
+    h.emplace_back("Settings", all_pairs_text(*p));
   h.emplace_back("Directory", r.dir.string());
   return h;
 }

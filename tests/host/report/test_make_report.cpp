@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "palp/error.hpp"
+#include "palp/identification.hpp"
+#include "palp/result.hpp"
 #include "palp/report.hpp"
 #include "palp/trace.hpp"
+#include "report/report_internal.hpp"
 #include "report_plots_synth.hpp"
 
 namespace {
@@ -68,6 +71,18 @@ TEST(MakeReport, AnIdentificationResultGivesItsBodePlots) {
   EXPECT_THAT(r.title, HasSubstr("Identification: "));
   EXPECT_FALSE(r.sections[0].figures.empty());
   expect_every_figure_on_the_page(r);
+}
+
+TEST(MakeReport, AnIdentificationsSettingsReadAsKeyValuePairsNotJson) {
+  palp::LoadedResult loaded = palp::load_result(
+      palp_test::report::write_known_identification(palp_test::report::fresh_dir("mr-id-settings") / "result"));
+  loaded.summary["parameters"] = palp::identification_settings_json(palp::IdentificationSettings{});
+  std::string settings;
+  for (const auto& [key, value] : palp::report::detail::result_header(loaded))
+    if (key == "Settings") settings = value;
+  EXPECT_THAT(settings, HasSubstr("bias_A 1, "));           // keys carry their units
+  EXPECT_THAT(settings, HasSubstr("fit.max_lm_iterations "));  // nested objects dotted
+  EXPECT_THAT(settings, ::testing::Not(HasSubstr("{")));
 }
 
 TEST(MakeReport, ATraceFileOrItsDirectoryGivesTheSurface) {
