@@ -87,7 +87,7 @@ std::string indentation_settings_text(const json& p) {
   std::string s = "ramp " + num(number_or(p, "start_A", NAN)) + " → " + num(number_or(p, "stop_A", NAN)) +
                   " A by " + num(number_or(p, "step_A", NAN)) + " A every " +
                   num(number_or(p, "dwell_s", NAN) * 1e3) + " ms, " + num(number_or(p, "reps", NAN)) +
-                  " repetitions, limit " + num(number_or(p, "displacement_limit_mm", NAN)) + " mm, stream " +
+                  (number_or(p, "reps", NAN) == 1 ? " repetition" : " repetitions") + ", limit " + num(number_or(p, "displacement_limit_mm", NAN)) + " mm, stream " +
                   num(number_or(p, "rate_Hz", NAN)) + " Hz";
   if (const auto a = p.find("analysis"); a != p.end() && a->is_object())
     s += "; analysis: K_f " + num(number_or(*a, "kf_N_per_A", NAN)) + " N/A, I_c " +
