@@ -156,4 +156,43 @@ void write_result_directory(const fs::path& dir, Overwrite overwrite,
   }
 }
 
+void check_own_file_replaceable(const fs::path& file, Overwrite overwrite, const OwnFileKind& kind) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(file, ec);
+  if (!fs::exists(st)) return;
+  if (overwrite == Overwrite::no)
+    throw ConfigError(file.string() + " already exists; choose another file, or overwrite it (palpctl --overwrite)");
+  const std::string tail = ": nothing was replaced; move it away, or choose another file";
+  if (!fs::is_regular_file(st)) throw ConfigError(file.string() + " " + kind.not_regular + tail);
+  std::ifstream in(file, std::ios::binary);
+  std::string first(kind.head.size(), '\0');
+  in.read(first.data(), static_cast<std::streamsize>(first.size()));
+  first.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  if (first != kind.head) throw ConfigError(file.string() + " " + kind.not_ours + tail);
+}
+
+void write_own_file(const fs::path& file_in, Overwrite overwrite, const OwnFileKind& kind,
+                    const std::function<std::string()>& make_text) {
+  const fs::path file = fs::absolute(file_in).lexically_normal();
+  if (file.filename().empty()) throw ConfigError(file_in.string() + " names no file");
+  check_own_file_replaceable(file, overwrite, kind);
+  const std::string text = make_text();
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  if (ec) throw RecordingError(file.parent_path().string(), 0, "cannot create: " + ec.message());
+  const fs::path tmp = recording_detail::temporary_sibling(file);
+  try {
+    write_text_file(tmp, text);
+    check_own_file_replaceable(file, overwrite, kind);  // again: it may have appeared meanwhile
+    fs::rename(tmp, file);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove(tmp, ec);
+    throw RecordingError(file.string(), 0, "cannot write: " + e.code().message());
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  recording_detail::sync_directory(file.parent_path());
+}
+
 }  // namespace palp

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -39,5 +40,26 @@ nlohmann::json result_head(const char* experiment);
 /// whether `dir` exists when overwrite is Overwrite::no.
 void write_result_directory(const std::filesystem::path& dir, Overwrite overwrite,
                             const std::function<void(const std::filesystem::path& tmp)>& fill);
+
+/// A single file palp writes whole (a tidy CSV, a report page): how an existing one is known to
+/// be palp's, and what a refusal says after the file's path.
+struct OwnFileKind {
+  std::string_view head;    ///< the bytes every such file palp writes begins with
+  std::string not_regular;  ///< "is not a report palp wrote (not a regular file)"
+  std::string not_ours;     ///< "was not written by palp (its first line does not begin ...)"
+};
+
+/// Whether `file` may be written: absent, or (with Overwrite::yes) a regular file beginning with
+/// kind.head. Else ConfigError "<file> already exists; ..." or "<file> <kind's words>: nothing
+/// was replaced; move it away, or choose another file".
+void check_own_file_replaceable(const std::filesystem::path& file, Overwrite overwrite,
+                                const OwnFileKind& kind);
+
+/// Writes `make_text()`'s text as `file` atomically: `file` checked (check_own_file_replaceable)
+/// before the text is made and again before the rename, its directory created, a hidden temporary
+/// sibling written and flushed, renamed into place, the directory synced. ConfigError for a file
+/// that may not be written (or a path naming no file), RecordingError when the disk refuses.
+void write_own_file(const std::filesystem::path& file, Overwrite overwrite, const OwnFileKind& kind,
+                    const std::function<std::string()>& make_text);
 
 }  // namespace palp

@@ -1,12 +1,9 @@
 // The tidy CSV of a map or a result directory (tidy_csv.hpp; docs/result-format.md "The tidy CSV").
 #include "palp/tidy_csv.hpp"
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -237,12 +234,6 @@ std::string result_csv(const fs::path& dir, TidyCsvExport& summary) {
   return table.text();
 }
 
-fs::path temporary_sibling(const fs::path& file) {
-  static std::atomic<unsigned> counter{0};
-  return file.parent_path() / ("." + file.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(counter++));
-}
-
 }  // namespace
 
 std::vector<std::string> tidy_csv_columns(const analysis::IndentationParams& params) {
@@ -279,45 +270,20 @@ std::string tidy_csv(const fs::path& input, TidyCsvExport* summary) {
   return text;
 }
 
-void check_tidy_csv_replaceable(const fs::path& file, Overwrite overwrite) {
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(file, ec);
-  if (!fs::exists(st)) return;
-  if (overwrite == Overwrite::no)
-    throw ConfigError(file.string() + " already exists; choose another file, or overwrite it (palpctl --overwrite)");
-  const std::string tail = ": nothing was replaced; move it away, or choose another file";
-  if (!fs::is_regular_file(st)) throw ConfigError(file.string() + " is not a file palp wrote (not a regular file)" + tail);
-  const std::string head(kTidyCsvHeadColumns);
-  std::ifstream in(file, std::ios::binary);
-  std::string first(head.size(), '\0');
-  in.read(first.data(), static_cast<std::streamsize>(first.size()));
-  first.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
-  if (first != head)
-    throw ConfigError(file.string() + " was not written by palp (its first line does not begin \"" + head +
-                      "\")" + tail);
+const OwnFileKind& tidy_csv_kind() {
+  static const OwnFileKind kind{kTidyCsvHeadColumns, "is not a file palp wrote (not a regular file)",
+                                "was not written by palp (its first line does not begin \"" +
+                                    std::string(kTidyCsvHeadColumns) + "\")"};
+  return kind;
 }
 
-TidyCsvExport export_tidy_csv(const fs::path& input, const fs::path& file_in, Overwrite overwrite) {
-  const fs::path file = fs::absolute(file_in).lexically_normal();
-  if (file.filename().empty()) throw ConfigError(file_in.string() + " names no file");
-  check_tidy_csv_replaceable(file, overwrite);
+void check_tidy_csv_replaceable(const fs::path& file, Overwrite overwrite) {
+  check_own_file_replaceable(file, overwrite, tidy_csv_kind());
+}
+
+TidyCsvExport export_tidy_csv(const fs::path& input, const fs::path& file, Overwrite overwrite) {
   TidyCsvExport summary;
-  const std::string text = tidy_csv(input, &summary);
-  std::error_code ec;
-  fs::create_directories(file.parent_path(), ec);
-  if (ec) throw RecordingError(file.parent_path().string(), 0, "cannot create: " + ec.message());
-  const fs::path tmp = temporary_sibling(file);
-  try {
-    write_text_file(tmp, text);
-    check_tidy_csv_replaceable(file, overwrite);  // again: it may have appeared meanwhile
-    fs::rename(tmp, file);
-  } catch (const fs::filesystem_error& e) {
-    fs::remove(tmp, ec);
-    throw RecordingError(file.string(), 0, "cannot write: " + e.code().message());
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
+  write_own_file(file, overwrite, tidy_csv_kind(), [&] { return tidy_csv(input, &summary); });
   return summary;
 }
 

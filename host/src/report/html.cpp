@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "experiments/result_dir.hpp"
@@ -135,22 +134,11 @@ std::string figure_html(const Figure& f) {
   return out + "</figure>\n";
 }
 
-void check_html_replaceable(const fs::path& file, Overwrite overwrite) {
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(file, ec);
-  if (!fs::exists(st)) return;
-  if (overwrite == Overwrite::no)
-    throw ConfigError(file.string() + " already exists; choose another file, or overwrite it (palpctl --overwrite)");
-  const std::string tail = ": nothing was replaced; move it away, or choose another file";
-  if (!fs::is_regular_file(st)) throw ConfigError(file.string() + " is not a report palp wrote (not a regular file)" + tail);
-  const std::string head(kReportHtmlHead);
-  std::ifstream in(file, std::ios::binary);
-  std::string first(head.size(), '\0');
-  in.read(first.data(), static_cast<std::streamsize>(first.size()));
-  first.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
-  if (first != head)
-    throw ConfigError(file.string() + " is not a report palp wrote (it does not begin \"<!DOCTYPE html>\" and " +
-                      "\"<!-- palp report\")" + tail);
+const OwnFileKind& report_kind() {
+  static const OwnFileKind kind{kReportHtmlHead, "is not a report palp wrote (not a regular file)",
+                                "is not a report palp wrote (it does not begin \"<!DOCTYPE html>\" and "
+                                "\"<!-- palp report\")"};
+  return kind;
 }
 
 }  // namespace
@@ -190,27 +178,8 @@ std::string report_html(const Report& report) {
   return out;
 }
 
-void write_report_html(const fs::path& file_in, const Report& report, Overwrite overwrite) {
-  const fs::path file = fs::absolute(file_in).lexically_normal();
-  if (file.filename().empty()) throw ConfigError(file_in.string() + " names no file");
-  check_html_replaceable(file, overwrite);
-  const std::string text = report_html(report);
-  std::error_code ec;
-  fs::create_directories(file.parent_path(), ec);
-  if (ec) throw RecordingError(file.parent_path().string(), 0, "cannot create: " + ec.message());
-  const fs::path tmp = recording_detail::temporary_sibling(file);
-  try {
-    write_text_file(tmp, text);
-    check_html_replaceable(file, overwrite);  // again: it may have appeared meanwhile
-    fs::rename(tmp, file);
-  } catch (const fs::filesystem_error& e) {
-    fs::remove(tmp, ec);
-    throw RecordingError(file.string(), 0, "cannot write: " + e.code().message());
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
-  recording_detail::sync_directory(file.parent_path());
+void write_report_html(const fs::path& file, const Report& report, Overwrite overwrite) {
+  write_own_file(file, overwrite, report_kind(), [&] { return report_html(report); });
 }
 
 }  // namespace palp::report
