@@ -8,6 +8,9 @@
 
 #include "common.hpp"
 #include "palp/error.hpp"
+#if PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "palp/report.hpp"
 #include "palp/result.hpp"
 
@@ -28,6 +31,11 @@ int report_command(const Context& ctx, const ReportCli& o) {
       throw palp::ConfigError(o.svg_dir + " already exists; choose another --svg, or pass --overwrite to replace it");
     palp::check_replaceable(o.svg_dir);
   }
+#if PALP_HAVE_HDF5
+  if (palp::is_hdf5_file(o.input))
+    throw palp::ConfigError(o.input + " is an HDF5 file; a report is made from the directory it was exported from " +
+                            "(a map, result or trace directory)");
+#endif
   const palp::report::Report r = palp::report::make_report(o.input);
   palp::report::write_report_html(o.out, r, ow);
   std::vector<std::filesystem::path> svgs;

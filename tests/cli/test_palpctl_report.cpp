@@ -3,6 +3,7 @@
 // those columns; the refusals (an existing page without --overwrite, a file palp did not write,
 // an --svg directory that is not palp's, an input that is no result) with their text and exit 2,
 // leaving every file as it was.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -111,6 +112,26 @@ TEST_F(PalpctlReport, AnInputThatIsNoResultIsNamed) {
   EXPECT_EQ(r.err, "palpctl: " + (dir_ / "nothing").string() +
                        ": no such file or directory; give a map directory (map.json), a result directory "
                        "(result.json) or a trace (trace.json)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "x.html"));
+}
+
+TEST_F(PalpctlReport, AFileThatIsNotPalpsOrAnHdf5ExportIsNamedWithWhatToGive) {
+  {
+    std::ofstream(dir_ / "notes.txt") << "not json";
+    std::ofstream(dir_ / "map.h5", std::ios::binary) << std::string("\x89HDF\r\n\x1a\n", 8) << "rest";
+  }
+  auto r = palpctl({"report", (dir_ / "notes.txt").string(), "--out", (dir_ / "x.html").string()});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, ::testing::StartsWith("palpctl: " + (dir_ / "notes.txt").string() + ": not JSON ("));
+  EXPECT_THAT(r.err, ::testing::EndsWith("; give a map directory (map.json), a result directory (result.json) "
+                                         "or a trace (trace.json)\n"));
+#if PALP_HAVE_HDF5
+  r = palpctl({"report", (dir_ / "map.h5").string(), "--out", (dir_ / "x.html").string()});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "palpctl: " + (dir_ / "map.h5").string() +
+                       " is an HDF5 file; a report is made from the directory it was exported from (a map, "
+                       "result or trace directory)\n");
+#endif
   EXPECT_FALSE(fs::exists(dir_ / "x.html"));
 }
 

@@ -242,8 +242,13 @@ Report make_report(const fs::path& input) {
       rep = map_report(input.parent_path().empty() ? fs::path(".") : input.parent_path());
     else if (name == kResultFile)
       rep = result_report(input.parent_path().empty() ? fs::path(".") : input.parent_path());
-    else
-      rep = trace_report(input);  // load_trace says when it is not a trace
+    else {
+      try {
+        rep = trace_report(input);  // any other file: a trace under another name, or nothing of palp's
+      } catch (const ConfigError& e) {
+        throw ConfigError(std::string(e.what()) + "; " + kinds);
+      }
+    }
   }
   rep.input = input.string();
   return rep;
