@@ -64,7 +64,7 @@ std::string plain(const json& v) {
 
 /// What the help, the messages and the checks need of one parameter.
 struct Spec {
-  std::string name, unit, doc, type;
+  std::string name, unit, doc;
   std::string range;     ///< "[0, 4] A" or "one of disabled, active_high, active_low"
   std::string fallback;  ///< the catalogue's default, as text
   bool choice = false;   ///< an enum: named values
@@ -97,11 +97,11 @@ const std::vector<Spec>& specs() {
     const Params defaults{};
     defaults.visit([&](const proto::FieldInfo& info, const auto& m) {
       using T = std::remove_cvref_t<decltype(m)>;
-      Spec s{info.name, info.unit, info.doc, info.type, {}, plain(value_json(defaults, v.size()))};
+      Spec s{info.name, info.unit, info.doc, {}, plain(value_json(defaults, v.size()))};
       if constexpr (std::is_enum_v<T>) {
         s.choice = true;
-        s.range = "one of";
-        for (const auto& e : proto::EnumInfo<T>::values) s.range += std::string(s.range.size() > 6 ? ", " : " ") + e.name;
+        for (const auto& e : proto::EnumInfo<T>::values)
+          s.range += (s.range.empty() ? "one of " : ", ") + std::string(e.name);
       } else {
         s.whole = std::is_integral_v<T>;
         s.type_lo = static_cast<double>(std::numeric_limits<T>::lowest());

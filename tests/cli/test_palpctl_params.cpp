@@ -182,6 +182,17 @@ TEST_F(PalpctlParams, DumpChangeRestoreRestoresExactlyAfterPrintingTheDiff) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["changed"], json::object());
   EXPECT_EQ(j["written"], false);
+
+  // another device's dump, naming one parameter: said on stderr, the others kept
+  std::ofstream(dump) << R"({"format": "palp-params", "version": 1, "device": {"serial": "SIM-0002"},
+                             "params": {"supply_V": 12}})";
+  r = run({"params", "restore", dump});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "palpctl: " + dump + " holds the parameters of SIM-0002; writing them to SIM-0001\n");
+  EXPECT_EQ(r.out, "supply_V: 24 -> 12 V\nrestored 1 parameter(s) from " + dump + "\n");
+  json expected = original;
+  expected["supply_V"] = 12;
+  EXPECT_EQ(params(), expected);
 }
 
 TEST_F(PalpctlParams, RestoreRefusesAMalformedFileBeforeTouchingTheDevice) {
