@@ -19,6 +19,7 @@
 #include "experiments/result_dir.hpp"
 #include "format/text_input.hpp"
 #include "palp/error.hpp"
+#include "palp/result.hpp"
 
 namespace palpctl {
 namespace {
@@ -334,12 +335,7 @@ int dump(const Context& ctx, const std::string& out, bool overwrite) {
   const palp::DeviceInfo& info = probe.info();
   ojson doc = {{"format", kDumpFormat},
                {"version", kDumpVersion},
-               {"device",
-                {{"serial", info.serial},
-                 {"board", info.board},
-                 {"firmware_version", info.firmware_version},
-                 {"git_hash", info.git_hash},
-                 {"protocol", std::to_string(info.protocol_major) + "." + std::to_string(info.protocol_minor)}}},
+               {"device", ojson(palp::device_json(info))},  // the sidecar's and result.json's block
                {"params", ojson::object()}};
   for (std::size_t k = 0; k < specs().size(); ++k) doc["params"][specs()[k].name] = value_json(p, k);
   if (out.empty()) {
@@ -451,8 +447,8 @@ void add_params_command(CLI::App& app, Context& ctx) {
 
   auto* d = cmd->add_subcommand(
       "dump", "Write every parameter as JSON ({\"format\": \"palp-params\", \"version\": 1, "
-              "\"device\": {serial, board, firmware_version, git_hash, protocol}, \"params\": "
-              "{name: value}}) on stdout, or atomically to --out");
+              "\"device\": {serial, board, firmware_version, ...}, \"params\": {name: value}}) on "
+              "stdout, or atomically to --out");
   d->add_option("--out", o->out, "The file (default: stdout)");
   d->add_flag("--overwrite", o->overwrite, "Replace --out if it is a dump palpctl wrote");
   d->callback([&ctx, o] { ctx.action = [&ctx, o] { return dump(ctx, o->out, o->overwrite); }; });

@@ -150,11 +150,21 @@ TEST_F(PalpctlParams, DumpChangeRestoreRestoresExactlyAfterPrintingTheDiff) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out, "wrote " + dump + ": " + std::to_string(palp::proto::Params::kFields.size()) +
                        " parameters of SIM-0001\n");
-  json saved;
-  std::ifstream(dump) >> saved;
+  std::stringstream text;
+  text << std::ifstream(dump).rdbuf();
+  EXPECT_EQ(text.str().rfind("{\n  \"format\": \"palp-params\",\n  \"version\": 1,", 0), 0u) << text.str();
+  std::size_t at = text.str().find("\n  \"params\": {");
+  for (const auto& f : palp::proto::Params::kFields) {  // in catalogue order
+    const std::size_t next = text.str().find(std::string("\"") + f.name + "\":", at);
+    ASSERT_NE(next, std::string::npos) << f.name;
+    EXPECT_GT(next, at) << f.name;
+    at = next;
+  }
+  const json saved = json::parse(text.str());
   EXPECT_EQ(saved["format"], "palp-params");
   EXPECT_EQ(saved["version"], 1);
   EXPECT_EQ(saved["device"]["serial"], "SIM-0001");
+  EXPECT_EQ(saved["device"]["board"], "palp-sim");
   const json original = params();
   EXPECT_EQ(saved["params"], original);
   EXPECT_EQ(run({"params", "dump", "--out", dump}).code, 2) << "an existing file needs --overwrite";
