@@ -66,10 +66,10 @@ std::string plain(const json& v) {
 /// What the help, the messages and the checks need of one parameter.
 struct Spec {
   std::string name, unit, doc;
-  std::string range;     ///< "[0, 4] A" or "one of disabled, active_high, active_low"
-  std::string fallback;  ///< the catalogue's default, as text
-  bool choice = false;   ///< an enum: named values
-  bool whole = false;    ///< an integer type
+  std::string range;                ///< "[0, 4] A" or "one of disabled, active_high, active_low"
+  std::string fallback;             ///< the catalogue's default, as text
+  bool choice = false;              ///< an enum: named values
+  bool whole = false;               ///< an integer type
   double type_lo = 0, type_hi = 0;  ///< what the member's type holds (numbers only)
 };
 
@@ -83,10 +83,14 @@ json value_json(const Params& p, std::size_t index) {
   json out;
   with_field(p, index, [&](const proto::FieldInfo&, const auto& m) {
     using T = std::remove_cvref_t<decltype(m)>;
-    if constexpr (std::is_enum_v<T>) out = name_of(m);
-    else if constexpr (std::is_same_v<T, float>) out = f32(m);
-    else if constexpr (std::is_arithmetic_v<T>) out = m;
-    else static_assert(kAlwaysFalse<T>, "palpctl params handles scalar and enum parameters only");
+    if constexpr (std::is_enum_v<T>)
+      out = name_of(m);
+    else if constexpr (std::is_same_v<T, float>)
+      out = f32(m);
+    else if constexpr (std::is_arithmetic_v<T>)
+      out = m;
+    else
+      static_assert(kAlwaysFalse<T>, "palpctl params handles scalar and enum parameters only");
   });
   return out;
 }
@@ -167,15 +171,18 @@ std::string store(Params& p, std::size_t index, const json& v, const std::string
     using T = std::remove_cvref_t<decltype(m)>;
     if constexpr (std::is_enum_v<T>) {
       for (const auto& e : proto::EnumInfo<T>::values)
-        if (v.is_string() && v.get<std::string>() == e.name) return void(m = static_cast<T>(e.value));
+        if (v.is_string() && v.get<std::string>() == e.name)
+          return void(m = static_cast<T>(e.value));
       problem = shown + " is not " + s.range;
     } else {
       if (!v.is_number()) return void(problem = shown + " is not a number");
       const double x = v.get<double>();
       if (!std::isfinite(x)) return void(problem = shown + " is not a finite number");
       if (s.whole && x != std::trunc(x))
-        return void(problem = shown + " is not a whole number" + (s.unit.empty() ? "" : " of " + s.unit));
-      if (x < s.type_lo || x > s.type_hi) return void(problem = shown + " is outside the range " + s.range);
+        return void(problem =
+                        shown + " is not a whole number" + (s.unit.empty() ? "" : " of " + s.unit));
+      if (x < s.type_lo || x > s.type_hi)
+        return void(problem = shown + " is outside the range " + s.range);
       m = static_cast<T>(x);
     }
   });
@@ -217,14 +224,16 @@ std::string with_unit(const json& v, const Spec& s) {
 void print_changes(const std::vector<Change>& list) {
   for (const Change& c : list) {
     const Spec& s = specs()[c.index];
-    std::cout << s.name << ": " << plain(c.old_value) << " -> " << with_unit(c.new_value, s) << '\n';
+    std::cout << s.name << ": " << plain(c.old_value) << " -> " << with_unit(c.new_value, s)
+              << '\n';
   }
   std::cout << std::flush;
 }
 
 json changes_json(const std::vector<Change>& list) {
   json j = json::object();
-  for (const Change& c : list) j[specs()[c.index].name] = {{"old", c.old_value}, {"new", c.new_value}};
+  for (const Change& c : list)
+    j[specs()[c.index].name] = {{"old", c.old_value}, {"new", c.new_value}};
   return j;
 }
 
@@ -241,10 +250,11 @@ void write_params(palp::Probe& probe, const Params& p) {
 std::string parameter_help() {
   std::size_t w = 0;
   for (const Spec& s : specs()) w = std::max(w, s.name.size());
-  std::string t = "Parameters (the protocol catalogue's Params; each value in the unit its name ends with):\n";
+  std::string t =
+      "Parameters (the protocol catalogue's Params; each value in the unit its name ends with):\n";
   for (const Spec& s : specs())
-    t += "  " + s.name + std::string(w + 2 - s.name.size(), ' ') + s.range + "; default " + s.fallback +
-         "\n  " + std::string(w + 2, ' ') + s.doc + "\n";
+    t += "  " + s.name + std::string(w + 2 - s.name.size(), ' ') + s.range + "; default " +
+         s.fallback + "\n  " + std::string(w + 2, ' ') + s.doc + "\n";
   return t;
 }
 
@@ -276,7 +286,8 @@ int get(const Context& ctx, const std::vector<std::string>& names) {
     const Spec& s = specs()[k];
     const std::string v = with_unit(value_json(p, k), s);
     std::cout << s.name << std::string(wn + 2 - s.name.size(), ' ') << v
-              << std::string(wv + 2 - v.size(), ' ') << (s.choice ? "" : "range ") << s.range << '\n';
+              << std::string(wv + 2 - v.size(), ' ') << (s.choice ? "" : "range ") << s.range
+              << '\n';
   }
   return kOk;
 }
@@ -298,7 +309,9 @@ int set(const Context& ctx, const std::vector<std::string>& assignments) {
     json v = text;
     double x = 0;
     const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
-    if (!specs()[*k].choice && !text.empty() && r.ec == std::errc() && r.ptr == text.data() + text.size()) v = x;
+    if (!specs()[*k].choice && !text.empty() && r.ec == std::errc() &&
+        r.ptr == text.data() + text.size())
+      v = x;
     const std::string problem = checked_store(wanted, *k, v, palp::format::quoted(text));
     if (!problem.empty()) throw palp::ConfigError(name + ": " + problem + "; nothing was written");
     given.emplace_back(*k, std::move(v));
@@ -337,7 +350,8 @@ int dump(const Context& ctx, const std::string& out, bool overwrite) {
                {"version", kDumpVersion},
                {"device", ojson(palp::device_json(info))},  // the sidecar's and result.json's block
                {"params", ojson::object()}};
-  for (std::size_t k = 0; k < specs().size(); ++k) doc["params"][specs()[k].name] = value_json(p, k);
+  for (std::size_t k = 0; k < specs().size(); ++k)
+    doc["params"][specs()[k].name] = value_json(p, k);
   if (out.empty()) {
     std::cout << doc.dump(2) << '\n';
     return kOk;
@@ -346,13 +360,16 @@ int dump(const Context& ctx, const std::string& out, bool overwrite) {
   if (ctx.json)
     print_json({{"file", out}, {"parameters", specs().size()}, {"serial", info.serial}});
   else
-    std::cout << "wrote " << out << ": " << specs().size() << " parameters of " << info.serial << '\n';
+    std::cout << "wrote " << out << ": " << specs().size() << " parameters of " << info.serial
+              << '\n';
   return kOk;
 }
 
 /// A dump file's parameters: index -> value, every one checked against the catalogue.
 std::vector<std::pair<std::size_t, json>> read_dump(const std::string& file, std::string& serial) {
-  const auto fail = [&](const std::string& problem) -> void { throw palp::ConfigError(file + ": " + problem); };
+  const auto fail = [&](const std::string& problem) -> void {
+    throw palp::ConfigError(file + ": " + problem);
+  };
   const std::string text = palp::format::read_bounded_or(file, kMaxDumpBytes, fail);
   json j;
   try {
@@ -362,24 +379,31 @@ std::vector<std::pair<std::size_t, json>> read_dump(const std::string& file, std
   }
   if (!j.is_object()) fail("not a parameter dump: the top level is not a JSON object");
   for (const auto& item : j.items())
-    if (item.key() != "format" && item.key() != "version" && item.key() != "device" && item.key() != "params")
-      fail(palp::format::quoted(item.key()) + ": unknown key (a dump has format, version, device, params)");
+    if (item.key() != "format" && item.key() != "version" && item.key() != "device" &&
+        item.key() != "params")
+      fail(palp::format::quoted(item.key()) +
+           ": unknown key (a dump has format, version, device, params)");
   if (!j.contains("format") || j["format"] != kDumpFormat)
-    fail(std::string("not a parameter dump: \"format\" is not \"") + kDumpFormat + "\" (palpctl params dump writes one)");
+    fail(std::string("not a parameter dump: \"format\" is not \"") + kDumpFormat +
+         "\" (palpctl params dump writes one)");
   if (!j.contains("version") || !j["version"].is_number_integer() || j["version"] != kDumpVersion)
-    fail("\"version\" " + (j.contains("version") ? j["version"].dump() : std::string("is missing")) +
+    fail("\"version\" " +
+         (j.contains("version") ? j["version"].dump() : std::string("is missing")) +
          ": this palpctl reads version " + std::to_string(kDumpVersion));
   if (j.contains("device")) {
     if (!j["device"].is_object()) fail("\"device\" is not an object");
-    if (j["device"].contains("serial") && j["device"]["serial"].is_string()) serial = j["device"]["serial"];
+    if (j["device"].contains("serial") && j["device"]["serial"].is_string())
+      serial = j["device"]["serial"];
   }
-  if (!j.contains("params") || !j["params"].is_object()) fail("\"params\" is missing or not an object");
+  if (!j.contains("params") || !j["params"].is_object())
+    fail("\"params\" is missing or not an object");
   std::vector<std::pair<std::size_t, json>> values;
   Params checked{};
   for (const auto& item : j["params"].items()) {
     const auto k = index_of(item.key());
     if (!k) fail("params: " + unknown_name(item.key()));
-    const std::string problem = checked_store(checked, *k, item.value(), palp::format::escaped(item.value().dump()));
+    const std::string problem =
+        checked_store(checked, *k, item.value(), palp::format::escaped(item.value().dump()));
     if (!problem.empty()) fail("params." + item.key() + ": " + problem);
     values.emplace_back(*k, item.value());
   }
@@ -391,7 +415,7 @@ int restore(const Context& ctx, const std::string& file, bool dry_run) {
   const auto values = read_dump(file, serial);
   auto probe = ctx.connect();
   if (!serial.empty() && serial != probe.info().serial)
-    std::cerr << "palpctl: " << file << " holds the parameters of " << serial << "; writing them to "
+    std::cerr << "palpctl: " << file << " holds the parameters of " << serial << "; this device is "
               << probe.info().serial << '\n';
   const Params before = probe.params();
   Params after = before;
@@ -399,15 +423,19 @@ int restore(const Context& ctx, const std::string& file, bool dry_run) {
   const std::vector<Change> diff = changes(before, after);
   if (!ctx.json) {
     print_changes(diff);  // before anything is written
-    if (diff.empty()) std::cout << "nothing to restore: the device already holds " << file << "'s values\n";
+    if (diff.empty())
+      std::cout << "nothing to restore: the device already holds " << file << "'s values\n";
   }
   if (!diff.empty() && !dry_run) write_params(probe, after);
   if (ctx.json) {
-    print_json({{"file", file}, {"changed", changes_json(diff)}, {"written", !diff.empty() && !dry_run},
+    print_json({{"file", file},
+                {"changed", changes_json(diff)},
+                {"written", !diff.empty() && !dry_run},
                 {"dry_run", dry_run}});
   } else if (!diff.empty()) {
     std::cout << (dry_run ? "dry run: nothing was written\n"
-                          : "restored " + std::to_string(diff.size()) + " parameter(s) from " + file + "\n");
+                          : "restored " + std::to_string(diff.size()) + " parameter(s) from " +
+                                file + "\n");
   }
   return kOk;
 }
@@ -423,42 +451,47 @@ struct ParamsCli {
 void add_params_command(CLI::App& app, Context& ctx) {
   auto o = std::make_shared<ParamsCli>();
   auto* cmd = app.add_subcommand(
-      "params", "Read, change, save and restore the device's parameters (the current clamp, the "
-                "I2t model, the travel limits, the heartbeat timeout, ...), named as the protocol "
-                "catalogue names them, in the unit each name ends with");
+      "params",
+      "Read, change, save and restore the device's parameters (the current clamp, the "
+      "I2t model, the travel limits, the heartbeat timeout, ...), named as the protocol "
+      "catalogue names them, in the unit each name ends with");
   cmd->require_subcommand(1, 1);
   cmd->footer(parameter_help);
 
-  auto* g = cmd->add_subcommand("get", "Print the parameters' values (all, or the NAMEs) with their "
-                                       "units and ranges; --json: one object name -> value");
+  auto* g = cmd->add_subcommand("get",
+                                "Print the parameters' values (all, or the NAMEs) with their "
+                                "units and ranges; --json: one object name -> value");
   g->add_option("NAME", o->names, "Parameters to print (default: all)");
   g->footer(parameter_help);
   g->callback([&ctx, o] { ctx.action = [&ctx, o] { return get(ctx, o->names); }; });
 
   auto* s = cmd->add_subcommand(
-      "set", "Change parameters: reads the device's, checks every NAME=VALUE against the "
-             "catalogue (unknown names, non-numbers, NaN and values outside the range are refused "
-             "with exit 2 and nothing written), writes, reads back and prints what changed "
-             "(name: old -> new); nothing is written when every value is already in force");
+      "set",
+      "Change parameters: reads the device's, checks every NAME=VALUE against the "
+      "catalogue (unknown names, non-numbers, NaN and values outside the range are refused "
+      "with exit 2 and nothing written), writes, reads back and prints what changed "
+      "(name: old -> new); nothing is written when every value is already in force");
   s->add_option("NAME=VALUE", o->assignments, "e.g. current_clamp_A=2.5 contact_output=active_high")
       ->required();
   s->footer(parameter_help);
   s->callback([&ctx, o] { ctx.action = [&ctx, o] { return set(ctx, o->assignments); }; });
 
   auto* d = cmd->add_subcommand(
-      "dump", "Write every parameter as JSON ({\"format\": \"palp-params\", \"version\": 1, "
-              "\"device\": {serial, board, firmware_version, ...}, \"params\": {name: value}}) on "
-              "stdout, or atomically to --out");
+      "dump",
+      "Write every parameter as JSON ({\"format\": \"palp-params\", \"version\": 1, "
+      "\"device\": {serial, board, firmware_version, ...}, \"params\": {name: value}}) on "
+      "stdout, or atomically to --out");
   d->add_option("--out", o->out, "The file (default: stdout)");
   d->add_flag("--overwrite", o->overwrite, "Replace --out if it is a dump palpctl wrote");
   d->callback([&ctx, o] { ctx.action = [&ctx, o] { return dump(ctx, o->out, o->overwrite); }; });
 
   auto* r = cmd->add_subcommand(
-      "restore", "Write a dump's parameters back: the file is checked whole first (JSON, its "
-                 "format and version, unknown keys, types, the catalogue's ranges: exit 2 and "
-                 "nothing written), then the differences from the device print (name: old -> new) "
-                 "before anything is written, and only a differing device is written; a dump "
-                 "may name only some parameters (the others are kept)");
+      "restore",
+      "Write a dump's parameters back: the file is checked whole first (JSON, its "
+      "format and version, unknown keys, types, the catalogue's ranges: exit 2 and "
+      "nothing written), then the differences from the device print (name: old -> new) "
+      "before anything is written, and only a differing device is written; a dump "
+      "may name only some parameters (the others are kept)");
   r->add_option("FILE", o->file, "A file palpctl params dump wrote")->required();
   r->add_flag("--dry-run", o->dry_run, "Print the differences and write nothing");
   r->callback([&ctx, o] { ctx.action = [&ctx, o] { return restore(ctx, o->file, o->dry_run); }; });

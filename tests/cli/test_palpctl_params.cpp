@@ -23,7 +23,8 @@ class PalpctlParams : public ::testing::Test {
   void SetUp() override {
     ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("palpctl-params-" + std::to_string(::getpid()) + "-" + info->name());
+    dir_ = fs::temp_directory_path() /
+           ("palpctl-params-" + std::to_string(::getpid()) + "-" + info->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -80,7 +81,8 @@ TEST_F(PalpctlParams, GetOneNamePrintsItsValueUnitAndRange) {
   EXPECT_EQ(r.out, "heartbeat_timeout_ms  500 ms  range [50, 10000] ms\n");
   r = run({"params", "get", "travel_min_counts", "contact_output", "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(json::parse(r.out), json::parse(R"({"travel_min_counts": -1000, "contact_output": "disabled"})"));
+  EXPECT_EQ(json::parse(r.out),
+            json::parse(R"({"travel_min_counts": -1000, "contact_output": "disabled"})"));
   r = run({"params", "get", "travel_min_counts"});  // NOLIM: the i32's own range
   EXPECT_EQ(r.out, "travel_min_counts  -1000 counts  range [-2147483648, 2147483647] counts\n");
 }
@@ -110,17 +112,29 @@ TEST_F(PalpctlParams, SetPrintsWhatChangedAndGetShowsTheNewValues) {
 TEST_F(PalpctlParams, SetRefusesBadValuesWithTheCatalogueRangeAndWritesNothing) {
   const json before = params();
   const std::pair<std::vector<std::string>, std::string> cases[] = {
-      {{"current_clamp_A=5"}, "current_clamp_A: \"5\" is outside the range [0, 4] A; nothing was written"},
-      {{"current_clamp_A=2", "i2t_tau_s=0.5"}, "i2t_tau_s: \"0.5\" is outside the range [1, 10000] s; nothing was written"},
-      {{"heartbeat_timeout_ms=-1"}, "heartbeat_timeout_ms: \"-1\" is outside the range [50, 10000] ms; nothing was written"},
-      {{"current_clamp_A=nan"}, "current_clamp_A: \"nan\" is not a finite number; nothing was written"},
+      {{"current_clamp_A=5"},
+       "current_clamp_A: \"5\" is outside the range [0, 4] A; nothing was written"},
+      {{"current_clamp_A=2", "i2t_tau_s=0.5"},
+       "i2t_tau_s: \"0.5\" is outside the range [1, 10000] s; nothing was written"},
+      {{"heartbeat_timeout_ms=-1"},
+       "heartbeat_timeout_ms: \"-1\" is outside the range [50, 10000] ms; nothing was written"},
+      {{"current_clamp_A=nan"},
+       "current_clamp_A: \"nan\" is not a finite number; nothing was written"},
       {{"supply_V=inf"}, "supply_V: \"inf\" is not a finite number; nothing was written"},
       {{"supply_V=12V"}, "supply_V: \"12V\" is not a number; nothing was written"},
-      {{"heartbeat_timeout_ms=750.5"}, "heartbeat_timeout_ms: \"750.5\" is not a whole number of ms; nothing was written"},
-      {{"contact_output=high"}, "contact_output: \"high\" is not one of disabled, active_high, active_low; nothing was written"},
-      {{"current_clamp=2"}, "unknown parameter \"current_clamp\": did you mean current_clamp_A? (palpctl params --help lists them)"},
-      {{"hartbeat_timeout_ms=600"}, "unknown parameter \"hartbeat_timeout_ms\": did you mean heartbeat_timeout_ms? (palpctl params --help lists them)"},
-      {{"current_clamp_A"}, "\"current_clamp_A\": expected NAME=VALUE (palpctl params set current_clamp_A=2.5)"},
+      {{"heartbeat_timeout_ms=750.5"},
+       "heartbeat_timeout_ms: \"750.5\" is not a whole number of ms; nothing was written"},
+      {{"contact_output=high"},
+       "contact_output: \"high\" is not one of disabled, active_high, active_low; nothing was "
+       "written"},
+      {{"current_clamp=2"},
+       "unknown parameter \"current_clamp\": did you mean current_clamp_A? (palpctl params --help "
+       "lists them)"},
+      {{"hartbeat_timeout_ms=600"},
+       "unknown parameter \"hartbeat_timeout_ms\": did you mean heartbeat_timeout_ms? (palpctl "
+       "params --help lists them)"},
+      {{"current_clamp_A"},
+       "\"current_clamp_A\": expected NAME=VALUE (palpctl params set current_clamp_A=2.5)"},
       {{"supply_V=12", "supply_V=13"}, "supply_V is given twice; nothing was written"},
   };
   for (const auto& [args, message] : cases) {
@@ -152,7 +166,8 @@ TEST_F(PalpctlParams, DumpChangeRestoreRestoresExactlyAfterPrintingTheDiff) {
                        " parameters of SIM-0001\n");
   std::stringstream text;
   text << std::ifstream(dump).rdbuf();
-  EXPECT_EQ(text.str().rfind("{\n  \"format\": \"palp-params\",\n  \"version\": 1,", 0), 0u) << text.str();
+  EXPECT_EQ(text.str().rfind("{\n  \"format\": \"palp-params\",\n  \"version\": 1,", 0), 0u)
+      << text.str();
   std::size_t at = text.str().find("\n  \"params\": {");
   for (const auto& f : palp::proto::Params::kFields) {  // in catalogue order
     const std::size_t next = text.str().find(std::string("\"") + f.name + "\":", at);
@@ -170,7 +185,10 @@ TEST_F(PalpctlParams, DumpChangeRestoreRestoresExactlyAfterPrintingTheDiff) {
   EXPECT_EQ(run({"params", "dump", "--out", dump}).code, 2) << "an existing file needs --overwrite";
   EXPECT_EQ(run({"params", "dump", "--out", dump, "--overwrite"}).code, 0);
 
-  ASSERT_EQ(run({"params", "set", "current_clamp_A=1.5", "travel_max_counts=20000", "contact_output=active_low"}).code, 0);
+  ASSERT_EQ(run({"params", "set", "current_clamp_A=1.5", "travel_max_counts=20000",
+                 "contact_output=active_low"})
+                .code,
+            0);
   const json changed = params();
 
   r = run({"params", "restore", dump, "--dry-run"});
@@ -194,11 +212,13 @@ TEST_F(PalpctlParams, DumpChangeRestoreRestoresExactlyAfterPrintingTheDiff) {
   EXPECT_EQ(j["written"], false);
 
   // another device's dump, naming one parameter: said on stderr, the others kept
-  std::ofstream(dump) << R"({"format": "palp-params", "version": 1, "device": {"serial": "SIM-0002"},
+  std::ofstream(dump)
+      << R"({"format": "palp-params", "version": 1, "device": {"serial": "SIM-0002"},
                              "params": {"supply_V": 12}})";
   r = run({"params", "restore", dump});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.err, "palpctl: " + dump + " holds the parameters of SIM-0002; writing them to SIM-0001\n");
+  EXPECT_EQ(r.err,
+            "palpctl: " + dump + " holds the parameters of SIM-0002; this device is SIM-0001\n");
   EXPECT_EQ(r.out, "supply_V: 24 -> 12 V\nrestored 1 parameter(s) from " + dump + "\n");
   json expected = original;
   expected["supply_V"] = 12;
@@ -212,14 +232,21 @@ TEST_F(PalpctlParams, RestoreRefusesAMalformedFileBeforeTouchingTheDevice) {
   const std::pair<std::string, std::string> cases[] = {
       {head + R"("params": {"current_clamp_A": 2,})", "not JSON: "},
       {R"([1, 2])", "not a parameter dump: the top level is not a JSON object"},
-      {R"({"format": "palp-rig", "version": 1, "params": {}})", "not a parameter dump: \"format\" is not \"palp-params\""},
-      {R"({"format": "palp-params", "version": 2, "params": {}})", "\"version\" 2: this palpctl reads version 1"},
+      {R"({"format": "palp-rig", "version": 1, "params": {}})",
+       "not a parameter dump: \"format\" is not \"palp-params\""},
+      {R"({"format": "palp-params", "version": 2, "params": {}})",
+       "\"version\" 2: this palpctl reads version 1"},
       {head + R"("params": {}, "comment": "x"})", "\"comment\": unknown key"},
-      {head + R"("params": {"current_clamp_A": 2, "clamp_A": 2}})", "params: unknown parameter \"clamp_A\""},
-      {head + R"("params": {"current_clamp_A": 4.5}})", "params.current_clamp_A: 4.5 is outside the range [0, 4] A"},
-      {head + R"("params": {"current_clamp_A": "2"}})", "params.current_clamp_A: \"2\" is not a number"},
-      {head + R"("params": {"heartbeat_timeout_ms": true}})", "params.heartbeat_timeout_ms: true is not a number"},
-      {head + R"("params": {"contact_output": 1}})", "params.contact_output: 1 is not one of disabled, active_high, active_low"},
+      {head + R"("params": {"current_clamp_A": 2, "clamp_A": 2}})",
+       "params: unknown parameter \"clamp_A\""},
+      {head + R"("params": {"current_clamp_A": 4.5}})",
+       "params.current_clamp_A: 4.5 is outside the range [0, 4] A"},
+      {head + R"("params": {"current_clamp_A": "2"}})",
+       "params.current_clamp_A: \"2\" is not a number"},
+      {head + R"("params": {"heartbeat_timeout_ms": true}})",
+       "params.heartbeat_timeout_ms: true is not a number"},
+      {head + R"("params": {"contact_output": 1}})",
+       "params.contact_output: 1 is not one of disabled, active_high, active_low"},
       {head + R"("params": [3.2]})", "\"params\" is missing or not an object"},
   };
   int n = 0;
@@ -239,8 +266,10 @@ TEST_F(PalpctlParams, RestoreRefusesAMalformedFileBeforeTouchingTheDevice) {
 TEST_F(PalpctlParams, HelpListsEveryCatalogueParameterWithItsRange) {
   const auto r = palpctl({"params", "get", "--help"});
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const auto& f : palp::proto::Params::kFields) EXPECT_NE(r.out.find(std::string("  ") + f.name + " "), std::string::npos) << f.name;
-  EXPECT_NE(r.out.find("  current_clamp_A         [0, 4] A; default 3.2\n"), std::string::npos) << r.out;
+  for (const auto& f : palp::proto::Params::kFields)
+    EXPECT_NE(r.out.find(std::string("  ") + f.name + " "), std::string::npos) << f.name;
+  EXPECT_NE(r.out.find("  current_clamp_A         [0, 4] A; default 3.2\n"), std::string::npos)
+      << r.out;
 }
 
 }  // namespace
