@@ -257,6 +257,10 @@ TEST_F(PalpctlParams, RestoreRefusesAMalformedFileBeforeTouchingTheDevice) {
     EXPECT_EQ(r.err.rfind("palpctl: " + f + ": " + message, 0), 0u) << r.err;
     EXPECT_EQ(r.out, "") << text;
   }
+  const auto big = run({"params", "restore", file("big.json", std::string((1u << 20) + 1, ' '))});
+  EXPECT_EQ(big.code, 2);
+  EXPECT_EQ(big.err, "palpctl: " + file("big.json") +
+                         ": the file has 1048577 bytes, more than the limit of 1048576 bytes (1 MiB)\n");
   const auto missing = run({"params", "restore", file("absent.json")});
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
