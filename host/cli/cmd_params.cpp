@@ -237,9 +237,24 @@ json changes_json(const std::vector<Change>& list) {
   return j;
 }
 
-/// Writes p, reads it back, and refuses a device that holds something else (exit 1).
+/// Writes p, reads it back, and refuses a device that holds something else (exit 1). A value
+/// inside the catalogue's range that the device refuses broke one of the device's own rules
+/// (control_rate_Hz 20000 or 40000, travel_min_counts below travel_max_counts): the refusal
+/// says so, with the parameter's value and its catalogue doc.
 void write_params(palp::Probe& probe, const Params& p) {
-  probe.set_params(p);
+  try {
+    probe.set_params(p);
+  } catch (const palp::DeviceError& e) {
+    const std::size_t k = e.field_index();
+    if (e.code() != static_cast<std::uint16_t>(proto::ErrorCode::out_of_range) ||
+        k >= specs().size())
+      throw;
+    throw palp::DeviceError(std::string(e.what()) + ": " + specs()[k].name + " = " +
+                                with_unit(value_json(p, k), specs()[k]) +
+                                " is within the catalogue's range, so a rule of the device's (" +
+                                specs()[k].doc + "); nothing was written",
+                            e.request(), e.code(), e.field_index(), e.detail());
+  }
   const Params held = probe.params();
   for (const Change& c : changes(p, held))
     throw palp::Error("the device holds " + specs()[c.index].name + " = " + plain(c.new_value) +

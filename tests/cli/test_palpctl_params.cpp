@@ -154,7 +154,15 @@ TEST_F(PalpctlParams, ARuleOnlyTheDeviceKnowsIsItsRefusalExit1) {
   const auto r = run({"params", "set", "control_rate_Hz=30000"});
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("out_of_range"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("control_rate_Hz"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(": control_rate_Hz = 30000 Hz is within the catalogue's range, so a rule of "
+                       "the device's (Control tick rate; a device accepts 20000 and 40000"),
+            std::string::npos)
+      << r.err;
+  const auto travel = run({"params", "set", "travel_min_counts=36000"});  // above travel_max
+  EXPECT_EQ(travel.code, 1) << travel.err;
+  EXPECT_NE(travel.err.find(": travel_min_counts = 36000 counts is within the catalogue's range"),
+            std::string::npos)
+      << travel.err;
   EXPECT_EQ(params(), before);
 }
 
