@@ -32,7 +32,7 @@ int analyze_sweep(const Context& ctx, const AnalyzeSweepCli& a) {
   bool free_air = a.free_air;
   if (an::is_frf_table(o.input)) {
     frf = an::read_frf_table(o.input);
-    if (a.given("--bias-A")) bias = o.bias_A;
+    if (a.given("--bias-current-A")) bias = o.bias_A;
   } else {
     palp::Recording rec = palp::read_recording(o.input);
     palp::IdentificationRun run;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common.hpp"
+#include "option_alias.hpp"
 #include "palp/result.hpp"
 #include "palp/identification.hpp"
 
@@ -105,18 +106,19 @@ void add_calibrate_command(CLI::App& app, Context& ctx) {
   cmd->require_subcommand(1, 1);
   auto o = std::make_shared<CalibrateOptions>();
 
-  add_one(*cmd, ctx, "current-offset",
-          "With the coil idle (0 A), average the measured current and set the current-sense "
-          "offset so it reads 0 A",
-          o)
-      ->add_option("--seconds", o->seconds, "Averaging time, s")
-      ->check(CLI::Range(0.01, 60.0))
-      ->capture_default_str();
-  add_one(*cmd, ctx, "pressure-zero",
-          "With the probe unloaded, average each pressure channel and set its offset, Pa", o)
-      ->add_option("--seconds", o->seconds, "Averaging time, s")
-      ->check(CLI::Range(0.01, 60.0))
-      ->capture_default_str();
+  // --zero-s as in the recording options (the same zeroing, committed here): --seconds before
+  for (auto* zeroing :
+       {add_one(*cmd, ctx, "current-offset",
+                "With the coil idle (0 A), average the measured current and set the current-sense "
+                "offset so it reads 0 A",
+                o),
+        add_one(*cmd, ctx, "pressure-zero",
+                "With the probe unloaded, average each pressure channel and set its offset, Pa", o)})
+    add_hidden_alias(*zeroing,
+                     zeroing->add_option("--zero-s", o->seconds, "Averaging time, s")
+                         ->check(CLI::Range(0.01, 60.0))
+                         ->capture_default_str(),
+                     "--seconds");
   auto* home = add_one(*cmd, ctx, "home",
                        "Pull the coil against its rear end stop and set the stroke origin there",
                        o);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <iostream>
+#include <optional>
 
 #include "common.hpp"
 #include "export_hdf5.hpp"
@@ -26,7 +27,7 @@ struct MapCli {
   std::string rig, plan, out_dir = "map";
   bool resume = false;
   std::string preset = "2d";
-  int repetitions = 0;
+  std::optional<int> repetitions;  // the preset's when not given
 };
 
 json analysis_json(const palp::MapAnalysis& a) {
@@ -86,7 +87,7 @@ int map(const Context& ctx, const MapCli& o) {
   palp::MapOptions options;
   options.settings = palp::IndentationSettings::preset(o.preset == "1d" ? palp::IndentationPreset::one_d
                                                                         : palp::IndentationPreset::two_d);
-  if (o.repetitions > 0) options.settings.repetitions = o.repetitions;
+  if (o.repetitions) options.settings.repetitions = *o.repetitions;
   options.resume = o.resume;
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
@@ -205,7 +206,8 @@ void add_map_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--preset", o->preset, "Indentation protocol: 2d (25 ms, 3 reps) or 1d (100 ms, 5 reps)")
       ->check(CLI::IsMember({"1d", "2d"}))
       ->capture_default_str();
-  cmd->add_option("--reps", o->repetitions, "Repetitions per point (0: the preset's)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--reps", o->repetitions, "Load/unload cycles at each point (default: the preset's, 3 or 5)")
+      ->check(CLI::Range(1, 1000));
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
 
 }

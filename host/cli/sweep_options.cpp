@@ -9,6 +9,7 @@
 #include "format/text_input.hpp"
 #include "palp/error.hpp"
 #include "palp/identification_result.hpp"
+#include "option_alias.hpp"
 
 namespace palpctl {
 
@@ -149,12 +150,17 @@ void add_program_options(CLI::App* cmd, SweepCli& o) {
                   "periodic multisine, every line_step-th line excited, a tenth of the time")
       ->check(CLI::IsMember({"stepped", "multisine"}))
       ->capture_default_str();
-  cmd->add_option("--bias-A", o.bias_A, "Bias current I_0, A")->check(CLI::Range(-4.0, 4.0))->capture_default_str();
+  add_hidden_alias(*cmd,
+                   cmd->add_option("--bias-current-A", o.bias_A, "Bias current I_0, A")
+                       ->check(CLI::Range(-4.0, 4.0))->capture_default_str(),
+                   "--bias-A");
   cmd->add_option("--amplitude-A", o.amplitude_A,
                   "Peak excitation about the bias, A (a multisine's true waveform peak)")
       ->check(CLI::Range(0.0001, 4.0))->capture_default_str();
-  cmd->add_option("--f-lo-Hz", o.f_lo_Hz, "Lowest line, Hz")->check(kPositive)->capture_default_str();
-  cmd->add_option("--f-hi-Hz", o.f_hi_Hz, "Highest line, Hz")->check(kPositive)->capture_default_str();
+  add_hidden_alias(*cmd, cmd->add_option("--start-Hz", o.f_lo_Hz, "Lowest line, Hz")->check(kPositive)->capture_default_str(),
+                   "--f-lo-Hz");
+  add_hidden_alias(*cmd, cmd->add_option("--stop-Hz", o.f_hi_Hz, "Highest line, Hz")->check(kPositive)->capture_default_str(),
+                   "--f-hi-Hz");
   cmd->add_option("--step-Hz", o.step_Hz, "Stepped sine: line spacing, Hz")->check(kPositive)->capture_default_str();
   cmd->add_option("--settle-cycles", o.settle_cycles, "Stepped sine: cycles discarded per line (at least)")
       ->check(CLI::Range(0, 10000))->capture_default_str();

@@ -107,7 +107,7 @@ TEST_F(PalpctlAnalyzeSweep, TableOfAKnownSystemGivesItsParametersInBothLayouts) 
 
 TEST_F(PalpctlAnalyzeSweep, StaticResultGivesThePapersEffectiveMassAndObjectDamping) {
   const auto r = palpctl({"--json", "analyze", "sweep", "--input", table("c.csv", false), "--static",
-                          static_file(1.0), "--bias-A", "1.0"});
+                          static_file(1.0), "--bias-current-A", "1.0"});
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   // k_eff = 43.9 + 745.6 = 789.5 N/m: m_eff = k_eff / omega_n^2 = 179.6 g, b_o = b - b_v = 1.62
@@ -122,7 +122,7 @@ TEST_F(PalpctlAnalyzeSweep, StaticResultGivesThePapersEffectiveMassAndObjectDamp
 
 TEST_F(PalpctlAnalyzeSweep, StaticResultAtAnotherBiasIsRefusedWithTheFix) {
   const std::string st = static_file(1.2);
-  const auto r = palpctl({"analyze", "sweep", "--input", table("c.csv", false), "--static", st, "--bias-A", "1.0"});
+  const auto r = palpctl({"analyze", "sweep", "--input", table("c.csv", false), "--static", st, "--bias-current-A", "1.0"});
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "palpctl: --static " + st +
                        " gives k_o at a bias of 1.2 A but the sweep ran at I_0 = 1 A: analyse the "
@@ -224,7 +224,7 @@ TEST_F(PalpctlSweepSim, MultisineResultReanalysesTheSameFromItsRecordingAndItsTa
 }
 
 TEST_F(PalpctlSweepSim, ContactMarginIsCheckedBeforeAnythingMoves) {
-  const auto r = run({"sweep", "--bias-A", "0.55"});
+  const auto r = run({"sweep", "--bias-current-A", "0.55"});
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_EQ(r.err, "palpctl: identification: bias 0.55 A - peak 0.1 A = 0.45 A is not above I_c 0.5 A: "
                    "the tip would leave the specimen; raise bias_A or lower amplitude_A\n");

@@ -1,0 +1,121 @@
+// palpctl's renamed options (host/cli/README.md, "Renamed options"): the old spelling still
+// works and means the new option, --help shows only the new one; and the shell completion.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_process.hpp"
+
+namespace palpctl::test {
+namespace {
+
+using Path = std::vector<std::string>;
+
+struct Rename {
+  Path command;
+  std::string now, old, out_of_range;
+};
+
+// one row per rename and command family (sweep_options.cpp serves sweep, freeair, analyze sweep)
+const std::vector<Rename> kRenames = {
+    {{"sweep"}, "--bias-current-A", "--bias-A", "9"},
+    {{"freeair"}, "--bias-current-A", "--bias-A", "9"},
+    {{"analyze", "sweep"}, "--bias-current-A", "--bias-A", "9"},
+    {{"sweep"}, "--start-Hz", "--f-lo-Hz", "-1"},
+    {{"analyze", "sweep"}, "--stop-Hz", "--f-hi-Hz", "-1"},
+    {{"calibrate", "current-offset"}, "--zero-s", "--seconds", "99"},
+    {{"calibrate", "pressure-zero"}, "--zero-s", "--seconds", "99"},
+};
+
+std::string words(const Path& p) {
+  std::string s;
+  for (const auto& w : p) s += (s.empty() ? "" : " ") + w;
+  return s;
+}
+
+bool help_lists(const std::string& help, const std::string& option) {
+  return help.find("  " + option + " ") != std::string::npos ||
+         help.find("  " + option + "\n") != std::string::npos;
+}
+
+TEST(PalpctlRenamedOptions, HelpShowsTheNewSpellingOnly) {
+  for (const auto& r : kRenames) {
+    Path args = r.command;
+    args.push_back("--help");
+    const auto h = palpctl(args);
+    ASSERT_EQ(h.code, 0) << words(r.command) << ": " << h.err;
+    EXPECT_TRUE(help_lists(h.out, r.now)) << words(r.command) << " does not list " << r.now << ":\n" << h.out;
+    EXPECT_EQ(h.out.find(r.old + " "), std::string::npos) << words(r.command) << " lists " << r.old << ":\n" << h.out;
+  }
+}
+
+TEST(PalpctlRenamedOptions, OldSpellingReachesTheNewOptionsCheckAndNotBothAtOnce) {
+  for (const auto& r : kRenames) {
+    Path bad = r.command;
+    bad.insert(bad.end(), {r.old, r.out_of_range});
+    const auto e = palpctl(bad);
+    EXPECT_EQ(e.code, 2) << words(bad);
+    // the new option's own range check ran on the value, and its error names the new spelling
+    EXPECT_EQ(e.err.rfind(r.now + ": ", 0), 0u) << words(bad) << ": " << e.err;
+
+    Path both = r.command;
+    both.insert(both.end(), {r.now, "1", r.old, "1"});
+    const auto b = palpctl(both);
+    EXPECT_EQ(b.code, 2) << words(both);
+    EXPECT_NE(b.err.find(r.old + ": is the old spelling of " + r.now + ": give one of them"), std::string::npos)
+        << words(both) << ": " << b.err;
+  }
+}
+
+TEST(PalpctlRenamedOptions, OldSpellingsGiveTheSameRunAsTheNew) {
+  SimServer sim({"--phantom", "solid_1d", "--mount-mm", "27", "0", "-25"});
+  ASSERT_TRUE(sim.ok());
+  // the contact margin is checked with the given bias before anything moves: the same refusal
+  const std::string margin =
+      "palpctl: identification: bias 0.55 A - peak 0.1 A = 0.45 A is not above I_c 0.5 A: "
+      "the tip would leave the specimen; raise bias_A or lower amplitude_A\n";
+  for (const char* bias : {"--bias-current-A", "--bias-A"}) {
+    const auto r = palpctl({"--uri", sim.uri(), "sweep", bias, "0.55"});
+    EXPECT_EQ(r.code, 2) << bias;
+    EXPECT_EQ(r.err, margin) << bias;
+  }
+  // the band reaches the free-air excursion check (its message names it)
+  for (const Path& band : {Path{"--start-Hz", "2", "--stop-Hz", "5"}, Path{"--f-lo-Hz", "2", "--f-hi-Hz", "5"}}) {
+    Path args = {"--uri", sim.uri(), "freeair", "--amplitude-A", "0.1"};
+    args.insert(args.end(), band.begin(), band.end());
+    const auto r = palpctl(args);
+    EXPECT_EQ(r.code, 2) << words(band);
+    EXPECT_NE(r.err.find("excursion") , std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" over 2-5 Hz "), std::string::npos) << words(band) << ": " << r.err;
+  }
+  const auto z = palpctl({"--uri", sim.uri(), "calibrate", "current-offset", "--seconds", "0.05", "--ram-only"});
+  EXPECT_EQ(z.code, 0) << z.err;
+}
+
+TEST(PalpctlRenamedOptions, RepsIsLoadUnloadCyclesEverywhereAndZeroIsRefused) {
+  const std::vector<std::pair<Path, Path>> commands = {  // the command, and what it needs besides
+      {{"map"}, {"--rig", "/dev/null", "--plan", "/dev/null"}},
+      {{"indent"}, {"--out-dir", "x"}},
+      {{"run", "ramp"}, {}}};
+  for (const auto& [cmd, needs] : commands) {
+    Path args = cmd;
+    args.insert(args.end(), needs.begin(), needs.end());
+    args.insert(args.end(), {"--reps", "0"});
+    const auto r = palpctl(args);
+    EXPECT_EQ(r.code, 2) << words(args);
+    EXPECT_EQ(r.err.rfind("--reps: Value 0 not in range 1 to 1000", 0), 0u) << words(args) << ": " << r.err;
+    Path help = cmd;
+    help.push_back("--help");
+    const auto h = palpctl(help);
+    const auto at = h.out.find("  --reps ");
+    ASSERT_NE(at, std::string::npos) << words(cmd) << ":\n" << h.out;
+    const std::string line = h.out.substr(at, h.out.find('\n', at) - at);
+    EXPECT_NE(line.find("INT in [1 - 1000]"), std::string::npos) << words(cmd) << ": " << line;
+    EXPECT_NE(h.out.find("Load/unload cycles"), std::string::npos) << words(cmd) << ":\n" << h.out;
+  }
+}
+
+}  // namespace
+}  // namespace palpctl::test
