@@ -61,6 +61,7 @@ void add_flash_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);  // export --format csv
 void add_report_command(CLI::App& app, Context& ctx);  // report INPUT --out FILE.html
 void add_params_command(CLI::App& app, Context& ctx);  // params get|set|dump|restore
+void add_completion_command(CLI::App& app, Context& ctx);  // completion bash|zsh (hidden)
 /// analyze sweep | freeair (registered by add_analyze_command).
 void add_analyze_sweep_commands(CLI::App* analyze, Context& ctx);
 /// palpctl analyze map (registered with the other analyze commands, run by cmd_map.cpp).

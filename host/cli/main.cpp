@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   palpctl::add_export_command(app, ctx);
   palpctl::add_report_command(app, ctx);
   palpctl::add_params_command(app, ctx);
+  palpctl::add_completion_command(app, ctx);
 
   // every command's --help names the global options too (they may follow the command)
   const std::function<void(CLI::App*)> add_footer = [&](CLI::App* cmd) {

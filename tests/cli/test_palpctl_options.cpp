@@ -119,3 +119,31 @@ TEST(PalpctlRenamedOptions, RepsIsLoadUnloadCyclesEverywhereAndZeroIsRefused) {
 
 }  // namespace
 }  // namespace palpctl::test
+
+namespace palpctl::test {
+namespace {
+
+/// What the generated bash completion offers for a command line whose last word is `cur`.
+std::string completions(const std::string& words, int cword) {
+  const std::string script = std::string("source <(") + PALPCTL_BINARY + " completion bash) && COMP_WORDS=(" +
+                             words + ") && COMP_CWORD=" + std::to_string(cword) +
+                             "; _palpctl; echo \"${COMPREPLY[*]}\"";
+  const auto r = run_process({"/bin/bash", "-c", script});
+  EXPECT_EQ(r.code, 0) << words << ": " << r.err;
+  return r.out;
+}
+
+TEST(PalpctlCompletion, BashCompletesCommandsAndTheirOptionsButNoHiddenAlias) {
+  EXPECT_EQ(completions("palpctl ma", 1), "map\n");
+  EXPECT_EQ(completions("palpctl run ''", 2), "hold ramp sine sweep\n");
+  EXPECT_EQ(completions("palpctl --json calibrate kf --st", 4), "--start-A --stop-A --step-A\n");
+  EXPECT_EQ(completions("palpctl sweep --bias", 2), "--bias-current-A\n");  // not --bias-A
+  EXPECT_EQ(completions("palpctl freeair --f-", 2), "\n");                 // --f-lo-Hz is hidden
+  EXPECT_EQ(completions("palpctl calibrate current-offset --", 3),
+            "--help --ram-only --zero-s --uri --timeout-s --json\n");  // no --seconds
+  EXPECT_EQ(completions("palpctl analyze sweep --ti", 3), "--tip-radius-mm --timeout-s\n");
+  EXPECT_EQ(completions("palpctl compl", 1), "\n");  // the completion command itself is hidden
+}
+
+}  // namespace
+}  // namespace palpctl::test
