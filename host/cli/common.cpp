@@ -9,8 +9,11 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <sstream>
+
+#include "palp/log.hpp"
 
 namespace palpctl {
 
@@ -78,6 +81,22 @@ void require_finite_numbers(CLI::App& app) {
   for (CLI::Option* opt : app.get_options())
     if (opt->get_type_name().rfind("FLOAT", 0) == 0) opt->check(finite);
   for (CLI::App* sub : app.get_subcommands({})) require_finite_numbers(*sub);
+}
+
+void log_sdk_to_stderr() {
+  palp::set_log_handler([](palp::LogLevel level, const std::string& message) {
+    const auto now = std::chrono::system_clock::now();
+    const std::time_t t = std::chrono::system_clock::to_time_t(now);
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+    std::tm utc{};
+    gmtime_r(&t, &utc);
+    char stamp[64];
+    std::snprintf(stamp, sizeof stamp, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1,
+                  utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<int>(ms));
+    // one write per line: lines from the SDK's threads do not interleave
+    const std::string line = std::string("palpctl: ") + stamp + " " + palp::log_level_name(level) + ": " + message + "\n";
+    std::fwrite(line.data(), 1, line.size(), stderr);
+  });
 }
 
 int run_guarded(const Context& ctx, const std::function<int()>& action) {

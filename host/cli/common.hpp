@@ -77,6 +77,10 @@ extern const CLI::Validator kNonNegative;
 /// through, as every comparison with it is false.
 void require_finite_numbers(CLI::App& app);
 
+/// -v/--verbose: the SDK's log (palp/log.hpp: link lost and restored, requests resent, stream
+/// gaps, robot reconnects) on stderr, a line each: `palpctl: 2026-11-26T05:40:12.345Z warning: ...`.
+void log_sdk_to_stderr();
+
 /// Runs a command's action, turning every SDK error into its exit code and a message on stderr
 /// (and, with --json, an {"error": ...} object on stdout).
 int run_guarded(const Context& ctx, const std::function<int()>& action);

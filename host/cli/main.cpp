@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   app.add_flag("--json", ctx.json,
                "Print results as JSON on stdout (no progress on stderr; errors as "
                "{\"error\": ...})");
+  app.add_flag_callback("-v,--verbose", palpctl::log_sdk_to_stderr,
+                        "Report on stderr, with the time, what the SDK recovers from on its own: "
+                        "link lost and restored, requests resent, stream gaps, robot reconnects");
   app.require_subcommand(1, 1);
   app.fallthrough();  // global options may also follow the command: palpctl info --json
 
@@ -56,7 +59,7 @@ int main(int argc, char** argv) {
   // every command's --help names the global options too (they may follow the command)
   const std::function<void(CLI::App*)> add_footer = [&](CLI::App* cmd) {
     for (auto* sub : cmd->get_subcommands({})) {
-      sub->footer("Global options, before or after the command: --uri URI, --timeout-s S, --json.\n"
+      sub->footer("Global options, before or after the command: --uri URI, --timeout-s S, --json, -v.\n"
                   "Exit codes: 0 ok, 1 device/runtime error, 2 usage, 3 connection, 4 timeout,\n"
                   "5 version incompatible, 6 fault, 130 interrupted.");
       add_footer(sub);

@@ -2,6 +2,9 @@
 // works and means the new option, --help shows only the new one; and the shell completion.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,6 +146,41 @@ TEST(PalpctlCompletion, BashCompletesCommandsAndTheirOptionsButNoHiddenAlias) {
             "--help --ram-only --zero-s --uri --timeout-s --json\n");  // no --seconds
   EXPECT_EQ(completions("palpctl analyze sweep --ti", 3), "--tip-radius-mm --timeout-s\n");
   EXPECT_EQ(completions("palpctl compl", 1), "\n");  // the completion command itself is hidden
+}
+
+}  // namespace
+}  // namespace palpctl::test
+
+namespace palpctl::test {
+namespace {
+
+// -v: the SDK's log lines (palp/log.hpp) on stderr with a UTC timestamp; without it none
+TEST(PalpctlVerbose, StreamWithLostFramesPrintsGapLinesOnlyWithVerbose) {
+  SimServer sim;
+  ASSERT_TRUE(sim.ok());
+  const std::regex stamp(R"(palpctl: \d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z )");
+  const std::regex gap(R"((^|\n)palpctl: \S+ warning: stream gap: \d+ samples missing from index \d+ \(transport\)\n)");
+  const std::string out = ::testing::TempDir() + "palpctl-verbose-" + std::to_string(::getpid());
+  for (const bool verbose : {true, false}) {
+    ASSERT_EQ(sim.control("drop-frames 25"), "ok\n");  // every 25th device frame lost
+    Path args = {"--uri", sim.uri(), "stream", "--seconds", "1", "--rate-Hz", "1000", "--overwrite",
+                 "--out", out + (verbose ? "-v.csv" : ".csv")};
+    if (verbose) args.insert(args.begin(), "-v");
+    const auto r = palpctl(args);
+    ASSERT_EQ(sim.control("drop-frames 0"), "ok\n");
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(, ([1-9]\d*) missing\))"))) << r.out;  // frames were lost
+    if (verbose) {
+      EXPECT_TRUE(std::regex_search(r.err, gap)) << r.err;
+      EXPECT_NE(r.err.find(" info: connected to " + sim.uri() + ": device SIM-0001\n"), std::string::npos) << r.err;
+      EXPECT_TRUE(std::regex_search(r.err, stamp)) << r.err;
+    } else {
+      EXPECT_FALSE(std::regex_search(r.err, stamp)) << r.err;  // only the progress lines
+      EXPECT_EQ(r.err.find("stream gap"), std::string::npos) << r.err;
+    }
+    ASSERT_TRUE(sim.wait_no_client());
+  }
 }
 
 }  // namespace

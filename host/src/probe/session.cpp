@@ -6,6 +6,7 @@
 #include "palp/protocol/handshake.hpp"
 #include "palp/protocol/verdict_text.hpp"
 #include "probe/exchange.hpp"
+#include "probe/log.hpp"
 
 namespace palp::detail {
 
@@ -96,6 +97,8 @@ void Session::handshake_and_start() {
   device_ = hello(*transport_, options_.host_software, seq_++, options_.timeout);
   handshake_ = judge_or_throw(device_);
   heartbeat_ms_ = device_.heartbeat_timeout_ms;
+  detail::log(LogLevel::info, "connected to " + uri_ + ": device " +
+                                  std::string(device_.serial.bytes.data(), device_.serial.length()));
   io_ = std::thread([this] { io_loop(); });
 }
 
@@ -205,9 +208,11 @@ void Session::io_loop() {
                 (reopenable_ ? ") and ConnectOptions::reconnect is off: connect again"
                              : ") and a transport given to the Probe is never reopened: "
                                "construct the Probe again with a new transport");
+        detail::log(LogLevel::error, dead_);
         cv_.notify_all();
         return;
       }
+      detail::log(LogLevel::warning, "the link to " + uri_ + " was lost (" + e.what() + "): reconnecting");
       if (!reconnect(e.what())) return;
     } catch (const TimeoutError&) {
       // a heartbeat write that could not go out in time: the read side will tell if it is gone
@@ -362,6 +367,8 @@ bool Session::reconnect(const std::string& why) {
       // restore the session: the stream as it was configured and running
       if (cfg) send_async(*cfg, AsyncKind::restore);
       if (cfg && streaming) send_async(proto::StreamStart{}, AsyncKind::restore);
+      detail::log(LogLevel::info, "the link to " + uri_ + " was restored" +
+                                      (streaming ? " and the stream restarted" : std::string()));
       std::lock_guard lock(mu_);
       link_up_ = true;
       cv_.notify_all();
@@ -376,6 +383,7 @@ bool Session::reconnect(const std::string& why) {
   std::lock_guard lock(mu_);
   dead_ = "the link to " + uri_ + " was lost (" + why + ") and could not be restored within " +
           std::to_string(options_.reconnect_for.count()) + " ms: " + last;
+  detail::log(LogLevel::error, dead_);
   cv_.notify_all();
   return false;
 }

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "palp/error.hpp"
+#include "probe/log.hpp"
 
 namespace palp::detail {
 
@@ -109,6 +110,8 @@ Reply Session::request(const Req& m, std::chrono::milliseconds timeout) {
     if (got || a >= attempts) break;
     ++resends_;
     lock.unlock();
+    detail::log(LogLevel::warning, std::string("no reply to ") + Req::kName + " from " + uri_ + " within " +
+                                       std::to_string((timeout / attempts).count()) + " ms: resent it");
     try {
       write_message(m, seq);
     } catch (const TimeoutError&) {

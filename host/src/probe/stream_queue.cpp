@@ -1,6 +1,9 @@
 #include "probe/stream_queue.hpp"
 
 #include <algorithm>
+#include <string>
+
+#include "probe/log.hpp"
 
 namespace palp::detail {
 
@@ -21,8 +24,13 @@ void StreamQueue::count_item_locked(const StreamItem& item) {
   if (std::holds_alternative<Sample>(item)) {
     ++samples_;
   } else {
+    const Gap& g = std::get<Gap>(item);
     ++gaps_;
-    missing_ += std::get<Gap>(item).count;
+    missing_ += g.count;
+    if (logging())
+      log(LogLevel::warning, "stream gap: " + (g.count_known ? std::to_string(g.count) : std::string("an unknown number of")) +
+                                 " samples missing from index " + std::to_string(g.first_index) + " (" +
+                                 gap_source_name(g.source) + ")");
   }
 }
 

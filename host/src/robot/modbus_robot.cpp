@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "palp/error.hpp"
+#include "probe/log.hpp"
 
 namespace palp::detail {
 namespace {
@@ -146,10 +147,12 @@ void ModbusRobot::reconnect(const std::string& why) {
   const auto start = Clock::now();
   const auto deadline = start + options_.reconnect_for;
   std::string last = why;
+  detail::log(LogLevel::warning, "robot bridge " + info_.uri + ": the link failed (" + why + "): reconnecting");
   for (;;) {
     try {
       link_.connect();
       connect_checks(false);
+      detail::log(LogLevel::info, "robot bridge " + info_.uri + " reconnected after " + seconds_text(Clock::now() - start));
       return;
     } catch (const LinkDown& e) {
       last = e.what;
