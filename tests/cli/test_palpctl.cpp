@@ -57,7 +57,7 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
       "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
       "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format",
-      "--plot", "--port", "--bind", "--allow-remote"};
+      "--plot", "--port", "--bind", "--allow-remote", "--verbose"};
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},

@@ -143,7 +143,7 @@ TEST(PalpctlCompletion, BashCompletesCommandsAndTheirOptionsButNoHiddenAlias) {
   EXPECT_EQ(completions("palpctl sweep --bias", 2), "--bias-current-A\n");  // not --bias-A
   EXPECT_EQ(completions("palpctl freeair --f-", 2), "\n");                 // --f-lo-Hz is hidden
   EXPECT_EQ(completions("palpctl calibrate current-offset --", 3),
-            "--help --ram-only --zero-s --uri --timeout-s --json\n");  // no --seconds
+            "--help --ram-only --zero-s --uri --timeout-s --json --verbose\n");  // no --seconds
   EXPECT_EQ(completions("palpctl analyze sweep --ti", 3), "--tip-radius-mm --timeout-s\n");
   EXPECT_EQ(completions("palpctl compl", 1), "\n");  // the completion command itself is hidden
 }
