@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <mutex>
+#include <string>
 #include <thread>
 
+#include "palp/log.hpp"
 #include "palp/probe.hpp"
 #include "palp/sim_inproc.hpp"
 #include "sim_process.hpp"
@@ -157,6 +159,16 @@ TEST(ProbeStream, ARestartedSimulatorRestoresTheSessionAndTheStreamAfterAReconne
   auto sim = std::make_unique<SimProcess>(std::vector<std::string>{}, false);
   ASSERT_TRUE(sim->ok());
   const std::uint16_t port = sim->device_port();
+  // the recovery is reported through the log handler (palp/log.hpp), not kept silent
+  std::mutex log_mu;
+  std::string log;
+  palp::set_log_handler([&](palp::LogLevel level, const std::string& message) {
+    std::lock_guard lock(log_mu);
+    log += std::string(palp::log_level_name(level)) + ": " + message + "\n";
+  });
+  struct Unset {
+    ~Unset() { palp::set_log_handler(nullptr); }
+  } unset;
   palp::Probe probe(sim->uri());
   probe.configure_stream({.rate_Hz = 1000.0});
   probe.start_stream();
@@ -190,6 +202,12 @@ TEST(ProbeStream, ARestartedSimulatorRestoresTheSessionAndTheStreamAfterAReconne
   EXPECT_GE(new_samples, 200u);
   EXPECT_EQ(probe.health().reconnects, 1u);
   EXPECT_EQ(probe.status().state, palp::proto::DeviceState::idle);
+  std::lock_guard lock(log_mu);
+  EXPECT_THAT(log, HasSubstr("info: connected to "));
+  EXPECT_THAT(log, testing::ContainsRegex("warning: the link to [^ ]+ was lost \\(.*\\): reconnecting\n"));
+  EXPECT_THAT(log, testing::ContainsRegex("info: the link to [^ ]+ was restored and the stream restarted\n"));
+  EXPECT_THAT(log, testing::ContainsRegex(
+                       "warning: stream gap: an unknown number of samples missing from index [0-9]+ \\(reconnect\\)\n"));
 }
 
 TEST(ProbeStream, ALinkThatStaysDownFailsEveryCallWithWhyAndForHowLong) {
