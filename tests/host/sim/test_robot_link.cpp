@@ -5,6 +5,11 @@
 // RobotLinkError until it moves again; a bridge that is gone is a RobotLinkError naming the URI.
 #include <gmock/gmock.h>
 
+#include <mutex>
+#include <string>
+
+#include "palp/log.hpp"
+
 #include "test_robot_sim.hpp"
 
 namespace {
@@ -44,8 +49,22 @@ TEST(RobotLink, ADroppedConnectionIsReestablishedAndCommandsGoOn) {
   SimProcess sim(robot_args(), false);
   auto robot = connect_with_probe_tool(sim);
   const palp::Pose start = robot->pose();
+  std::mutex log_mu;  // the reconnect is reported through the log handler (palp/log.hpp)
+  std::string log;
+  palp::set_log_handler([&](palp::LogLevel level, const std::string& message) {
+    std::lock_guard lock(log_mu);
+    log += std::string(palp::log_level_name(level)) + ": " + message + "\n";
+  });
+  struct Unset {
+    ~Unset() { palp::set_log_handler(nullptr); }
+  } unset;
   ASSERT_EQ(sim.control("robot-drop"), "ok");
   EXPECT_POSITION_NEAR(robot->pose(), start.x_m, start.y_m, start.z_m, 1e-6);
+  {
+    std::lock_guard lock(log_mu);
+    EXPECT_THAT(log, testing::ContainsRegex("warning: robot bridge [^ ]+: the link failed \\(.*\\): reconnecting\n"));
+    EXPECT_THAT(log, testing::ContainsRegex("info: robot bridge [^ ]+ reconnected after [0-9.e+-]+ s\n"));
+  }
   const palp::MotionResult r = robot->move_lin_rel(palp::Pose{0, 0.001, 0, 0, 0, 0}, 0.05, 10s);
   EXPECT_EQ(r.result, rb::Result::done);
   EXPECT_EQ(r.seq, 2);
