@@ -5,5 +5,5 @@
 # packaging_deb test (tests/packaging) uses it: the test must not rebuild.
 if(DEFINED ENV{PALP_CPACK_STAGED_DIR})
   set(CPACK_INSTALL_CMAKE_PROJECTS "")
-  set(CPACK_INSTALLED_DIRECTORIES "$ENV{PALP_CPACK_STAGED_DIR}/usr;.")
+  set(CPACK_INSTALLED_DIRECTORIES "$ENV{PALP_CPACK_STAGED_DIR};.")  # usr/... as it is
 endif()

@@ -86,13 +86,16 @@ expect_in("${step_output}" "the consumer's output" "sdk ${PALP_VERSION}")
 
 # 7. pkg-config from the unpacked tree, and a bare compiler command
 set(pc ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${root}/usr/lib/pkgconfig pkg-config)
-foreach(pair "palp-analysis;${ANALYSIS_CONSUMER_SOURCE}/main.cpp;analysis" "palp;${CONSUMER_SOURCE}/main.cpp;sdk")
+foreach(pair "palp-analysis;${ANALYSIS_CONSUMER_SOURCE}/main.cpp;analysis;-lpalp_recording"
+             "palp;${CONSUMER_SOURCE}/main.cpp;sdk;-lpalp_device")
   list(GET pair 0 module)
   list(GET pair 1 source)
   list(GET pair 2 name)
+  list(GET pair 3 lib)
   step("pkg-config ${module}" ${pc} --cflags --libs ${module})
   string(STRIP "${step_output}" flags)
-  expect_in("${flags}" "pkg-config --libs ${module}" "-I${root}/usr/include" "-L${root}/usr/lib")
+  # the prefix comes from the .pc file's own directory (relocatable)
+  expect_in("${flags}" "pkg-config --libs ${module}" "-I${root}/usr/" "-L${root}/usr/" "${lib}")
   separate_arguments(flags UNIX_COMMAND "${flags}")
   step("${module}: c++ $(pkg-config --cflags --libs)" ${CXX_COMPILER} -std=c++20
        ${source} -o ${WORK_DIR}/pc_${name} ${flags})
