@@ -1,7 +1,7 @@
 // The recording in memory: its columns, one row, the sidecar's metadata and a whole recording,
 // in the recording's lab units (s, A, mm, Pa). The analysis takes these (palp::analysis links no
 // file, device or robot code); reading and writing the files is recording.hpp's, in the
-// experiments library. The format itself: docs/recording-format.md.
+// recording library (palp::recording). The format itself: docs/recording-format.md.
 #pragma once
 
 #include <array>
