@@ -85,7 +85,7 @@ struct RecordSettings {
   /// Without a program: how long to record, s of stream time (required, > 0). With one: stop the
   /// program after this long (0: at its end; required when the program is open-ended).
   double duration_s = 0;
-  std::optional<RecordedProgram> program;
+  std::optional<RecordedProgram> program = std::nullopt;
   bool zero_current = false;   ///< zero the current-sense offset first (device RAM only)
   bool zero_pressure = false;  ///< zero the pressure channels first, unloaded (device RAM only)
   double zero_s = 0.5;         ///< averaging time of each zeroing, s
@@ -95,9 +95,9 @@ struct RecordSettings {
   /// The sidecar's program_reason when no program runs.
   std::string no_program_reason = "no program ran";
   /// Polled about every 50 ms; true ends the recording early (interrupted).
-  std::function<bool()> cancelled;
+  std::function<bool()> cancelled = nullptr;
   /// Called after every batch of samples, from run()'s thread, and once with finished set.
-  std::function<void(const RecordProgress&)> progress;
+  std::function<void(const RecordProgress&)> progress = nullptr;
 };
 
 struct RecordResult {
