@@ -37,8 +37,9 @@
 // failed: the program (ProgramStop: the coil back to 0 A), the stream (the samples still queued
 // are kept), and after an error in a program's recording Probe::make_safe (no program, 0 A, no
 // stream). It reads the health counters and the fault (when the program did not end) and writes
-// the recording when at least one sample came, after an error with extra.error holding the
-// message, and then rethrows the first error. A cancelled recording is not an error: run()
+// the recording when the program (without one, the stream) started and at least one sample came,
+// after an error with extra.error holding the message, and then rethrows the first error (a
+// program the device refuses to load or start leaves no files). A cancelled recording is not an error: run()
 // returns with interrupted set. A plain stream never drives the coil: the device keeps holding
 // whatever it held before.
 //
@@ -101,7 +102,7 @@ struct RecordSettings {
 };
 
 struct RecordResult {
-  bool written = false;              ///< false when no sample came (then no file was written)
+  bool written = false;              ///< false when nothing was recorded (then no file was written)
   std::filesystem::path csv;         ///< the recording's final names
   std::filesystem::path sidecar;
   std::uint64_t samples = 0;

@@ -198,6 +198,7 @@ RecordResult Recorder::run(Probe& probe) {
   std::exception_ptr error;
   std::future<ProgramResult> done;
   bool loaded = false, streaming = false;
+  bool begun = false;  // the program started (or, without one, the stream): there is a recording
   try {
     if (program) {
       load_program(probe, *program);
@@ -207,9 +208,11 @@ RecordResult Recorder::run(Probe& probe) {
     probe.start_stream();
     if (program) {
       probe.start();
+      begun = true;
       const double wait_s = 2 * expected_s + 30 + o.reply_timeout_s;
       done = std::async(std::launch::async, [&probe, wait_s] { return probe.wait(recorder_ms(wait_s)); });
     }
+    begun = true;
     std::vector<StreamItem> items;
     auto last_item = RecorderClock::now();
     const auto silence_limit = std::chrono::duration<double>(o.reply_timeout_s + 5);
@@ -278,7 +281,7 @@ RecordResult Recorder::run(Probe& probe) {
   }
   out.csv = writer.csv_path();
   out.sidecar = writer.sidecar_path();
-  if (writer.rows() > 0) {
+  if (begun && writer.rows() > 0) {
     writer.finish(side);
     out.written = true;
   }
