@@ -1,20 +1,13 @@
 // palpctl run ramp|sine|sweep|hold: run a device program while streaming, into a recording.
 // The options mirror the protocol's Load* messages (protocol/include/palp/protocol/catalogue.hpp)
 // with the same defaults, in lab units (mm instead of encoder counts).
-#include <cmath>
 #include <memory>
 
 #include "acquire.hpp"
-#include "palp/result.hpp"
 
 namespace palpctl {
 
 namespace {
-
-// levels of a staircase from `from` toward `to` by `step`, `to` included when on the grid
-double grid_points(double from, double to, double step) {
-  return std::floor(std::fabs(to - from) / step + 1e-3) + 1;
-}
 
 struct RunOptions {
   AcquireOptions acq;
@@ -28,7 +21,7 @@ struct RunOptions {
 
 CLI::App* add_program(CLI::App& run, Context& ctx, std::shared_ptr<RunOptions> o,
                       const std::string& name, const std::string& help,
-                      std::function<ProgramSpec(const RunOptions&)> spec) {
+                      std::function<palp::RecordedProgram(const RunOptions&)> spec) {
   auto* cmd = run.add_subcommand(name, help);
   cmd->callback([&ctx, o, spec] {
     ctx.action = [&ctx, o, spec] { return acquire(ctx, o->acq, spec(*o)); };
@@ -54,13 +47,8 @@ void add_run_command(CLI::App& app, Context& ctx) {
   auto* hold = add_program(*run, ctx, o, "hold", "Hold a current for a time",
                            [](const RunOptions& r) {
     auto h = r.hold;
-    h.duration_s = static_cast<float>(r.acq.seconds);
-    ProgramSpec spec;
-    spec.name = "hold";
-    spec.params = palp::program_json(h);
-    spec.expected_s = r.acq.seconds;  // the program ends itself
-    spec.load = [h](palp::Probe& p) { p.load(h); };
-    return spec;
+    h.duration_s = static_cast<float>(r.acq.seconds);  // the program ends itself
+    return h;
   });
   opt(hold, "--current-A", o->hold.current_A, "Held current, A")->check(CLI::Range(-4.0, 4.0));
   hold->add_option("--seconds", o->acq.seconds, "How long, s")
@@ -76,16 +64,7 @@ void add_run_command(CLI::App& app, Context& ctx) {
     m.unload = r.no_unload ? 0 : 1;
     m.displacement_limit_counts =
         static_cast<std::uint32_t>(counts_from_mm(r.displacement_limit_mm));
-    const double levels = grid_points(m.start_A, m.stop_A, m.step_A);
-    const double stairs = m.unload ? 2 * levels - 1 : levels;
-    ProgramSpec spec;
-    spec.name = "ramp";
-    spec.params = palp::program_json(m);
-    spec.expected_s = stairs * m.dwell_s * m.repetitions;
-    spec.stop_after_s = r.acq.seconds;
-    spec.load = [m](palp::Probe& p) { p.load(m); };
-    spec.ramp = m;
-    return spec;
+    return m;
   });
   opt(ramp, "--start-A", o->ramp.start_A, "First step's current, A")->check(CLI::Range(-4.0, 4.0));
   opt(ramp, "--stop-A", o->ramp.stop_A, "Top step's current, A")->check(CLI::Range(-4.0, 4.0));
@@ -105,15 +84,7 @@ void add_run_command(CLI::App& app, Context& ctx) {
   // --- sine ---
   auto* sine = add_program(*run, ctx, o, "sine", "Sine about an offset current",
                            [](const RunOptions& r) {
-    const auto& m = r.sine;
-    const double t = m.cycles > 0 ? m.cycles / static_cast<double>(m.frequency_Hz) : 0.0;
-    ProgramSpec spec;
-    spec.name = "sine";
-    spec.params = palp::program_json(m);
-    spec.expected_s = t;
-    spec.stop_after_s = r.acq.seconds;
-    spec.load = [m](palp::Probe& p) { p.load(m); };
-    return spec;
+    return r.sine;
   });
   o->sine.cycles = 10;  // the catalogue's 0 runs until stopped; a recording wants an end
   opt(sine, "--offset-A", o->sine.offset_A, "Mean current, A")->check(CLI::Range(-4.0, 4.0));
@@ -130,22 +101,7 @@ void add_run_command(CLI::App& app, Context& ctx) {
   auto* sweep = add_program(*run, ctx, o, "sweep",
                             "Stepped-sine sweep from --start-Hz to --stop-Hz by --step-Hz",
                             [](const RunOptions& r) {
-    const auto& m = r.sweep;
-    double t = 0;
-    const double lines = grid_points(m.start_Hz, m.stop_Hz, m.step_Hz);
-    const double dir = m.stop_Hz >= m.start_Hz ? 1.0 : -1.0;
-    for (double j = 0; j < lines; ++j) {
-      const double f = m.start_Hz + dir * j * m.step_Hz;
-      const double settle = std::max<double>(m.settle_cycles, std::ceil(m.settle_min_s * f));
-      t += (settle + m.measure_cycles) / f;
-    }
-    ProgramSpec spec;
-    spec.name = "sweep";
-    spec.params = palp::program_json(m);
-    spec.expected_s = t;
-    spec.stop_after_s = r.acq.seconds;
-    spec.load = [m](palp::Probe& p) { p.load(m); };
-    return spec;
+    return r.sweep;
   });
   opt(sweep, "--offset-A", o->sweep.offset_A, "Mean current, A")->check(CLI::Range(-4.0, 4.0));
   opt(sweep, "--amplitude-A", o->sweep.amplitude_A, "Peak deviation from the offset, A")

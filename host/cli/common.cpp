@@ -1,6 +1,8 @@
 // palpctl: exit codes, error mapping, lab-unit JSON of the SDK's structs, progress, Ctrl-C.
 #include "common.hpp"
 
+#include "palp/result.hpp"
+
 #include <unistd.h>
 
 #include <charconv>
@@ -157,48 +159,9 @@ json to_json(const palp::Handshake& h) {
           {"message", h.message}};
 }
 
-json to_json(const palp::Params& p) {
-  return {{"current_clamp_A", f32(p.current_clamp_A)},
-          {"i2t_continuous_A", f32(p.i2t_continuous_A)},
-          {"i2t_limit_A2_s", f32(p.i2t_limit_A2s)},
-          {"i2t_tau_s", f32(p.i2t_tau_s)},
-          {"travel_min_mm", mm_from_counts(p.travel_min_counts)},
-          {"travel_max_mm", mm_from_counts(p.travel_max_counts)},
-          {"heartbeat_timeout_s", s_from_ms(p.heartbeat_timeout_ms)},
-          {"control_rate_Hz", p.control_rate_Hz},
-          {"supply_V", f32(p.supply_V)},
-          {"contact_output", name_of(p.contact_output)},
-          {"contact_output_hold_s", s_from_ms(p.contact_output_hold_ms)}};
-}
+json to_json(const palp::Params& p) { return palp::params_json(p); }
 
-json to_json(const palp::HealthCounters& h) {
-  json device = nullptr;
-  if (h.device_valid)
-    device = {{"time_s", static_cast<double>(h.device_time_us) * 1e-6},
-              {"frames_rx", h.device_frames_rx},
-              {"frames_tx", h.device_frames_tx},
-              {"rx_rejected", h.device_rx_rejected},
-              {"isr_queue_overflows", h.isr_queue_overflows},
-              {"stream_backlog_max", h.stream_backlog_max},
-              {"stream_samples_lost", h.stream_samples_lost},
-              {"usb_in_not_drained", h.usb_in_not_drained},
-              {"tx_frames_dropped", h.tx_frames_dropped},
-              {"control_overruns", h.control_overruns},
-              {"stream_gaps", h.device_stream_gaps}};
-  json j = {{"device", device},
-            {"host",
-             {{"frames_rx", h.host_frames_rx},
-              {"rx_rejected", h.host_rx_rejected},
-              {"samples_received", h.host_samples_received},
-              {"samples_missing", h.host_samples_missing},
-              {"queue_dropped", h.host_queue_dropped},
-              {"queue_max", h.host_queue_max},
-              {"gaps", h.host_gaps},
-              {"reconnects", h.reconnects},
-              {"requests_resent", h.requests_resent}}}};
-  if (!h.device_valid) j["device_reason"] = "no Health reply received";
-  return j;
-}
+json to_json(const palp::HealthCounters& h) { return palp::health_json(h); }
 
 json to_json(const palp::Status& s) {
   return {{"t_device_s", s.t_device_s},
@@ -214,20 +177,9 @@ json to_json(const palp::Status& s) {
           {"status_bits", s.status_bits}};
 }
 
-json to_json(const palp::FaultInfo& f) {
-  return {{"reason", name_of(f.reason)},
-          {"latched", f.reason != palp::proto::FaultReason::none},
-          {"t_device_s", f.t_device_s},
-          {"detail", f.detail},
-          {"text", f.text}};
-}
+json to_json(const palp::FaultInfo& f) { return palp::fault_json(f); }
 
-json to_json(const palp::ProgramResult& r) {
-  return {{"program", name_of(r.kind)},
-          {"end", name_of(r.end)},
-          {"t_device_s", r.t_device_s},
-          {"repetitions_done", r.repetitions_done}};
-}
+json to_json(const palp::ProgramResult& r) { return palp::program_result_json(r); }
 
 void print_text(const json& j, int indent) {
   const std::string pad(static_cast<std::size_t>(indent), ' ');

@@ -138,6 +138,19 @@ void read_program(const nlohmann::json& parameters, const std::string& where, Ra
 void read_program(const nlohmann::json& parameters, const std::string& where, SineProgram& m);
 void read_program(const nlohmann::json& parameters, const std::string& where, SweepProgram& m);
 void read_program(const nlohmann::json& parameters, const std::string& where, MultisineProgram& m);
+/// The device's state in lab units, as the sidecar and `palpctl --json` write it (keys carry
+/// their units, enums by their catalogue names):
+///   params_json:  current_clamp_A, i2t_continuous_A, i2t_limit_A2_s, i2t_tau_s, travel_min_mm,
+///                 travel_max_mm, heartbeat_timeout_s, control_rate_Hz, supply_V,
+///                 contact_output, contact_output_hold_s (the sidecar's device.params);
+///   health_json:  {"device": {time_s, frames_rx, ...} or null, "host": {frames_rx, ...}} and
+///                 device_reason when no Health reply came (the sidecar's health);
+///   fault_json:   reason, latched, t_device_s, detail, text;
+///   program_result_json: program, end, t_device_s, repetitions_done (program.result).
+nlohmann::json params_json(const Params& p);
+nlohmann::json health_json(const HealthCounters& h);
+nlohmann::json fault_json(const FaultInfo& f);
+nlohmann::json program_result_json(const ProgramResult& r);
 /// What the device and the SDK know before the first sample, for a recording's sidecar: the SDK
 /// version, device (device_json with "uri"), calibration, stroke_origin_z_mm (or its reason),
 /// zeroing and, in extra, "stream" (rate_Hz, period_s, channels, batch_samples of the configured

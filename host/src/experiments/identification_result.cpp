@@ -213,7 +213,7 @@ fs::path write_identification_result(const fs::path& dir_in, const Identificatio
     throw ConfigError("write_identification_result: the run has no samples; nothing to write");
   const fs::path dir = prepare_result_directory(dir_in, overwrite, "write_identification_result");
 
-  json summary = result_head("identification");
+  nlohmann::ordered_json summary = result_head("identification");
   const auto& sc = run.recording.sidecar;
   summary["device"] = sc ? sc->device : device_json(run.device);
   summary["firmware_version"] = run.device.firmware_version;

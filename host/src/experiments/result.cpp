@@ -33,7 +33,7 @@ fs::path write_result(const fs::path& dir_in, const IndentationRun& run, Overwri
     throw ConfigError("write_result: the run has no samples of the ramp; nothing to write");
   const fs::path dir = prepare_result_directory(dir_in, overwrite, "write_result");
 
-  json summary = result_head("indentation");
+  nlohmann::ordered_json summary = result_head("indentation");
   summary["device"] = run.recording.sidecar ? run.recording.sidecar->device : device_json(run.device);
   summary["firmware_version"] = run.device.firmware_version;
   summary["parameters"] = indentation_settings_json(run.settings);

@@ -117,7 +117,7 @@ fs::path prepare_result_directory(const fs::path& dir_in, Overwrite overwrite, c
   return dir;
 }
 
-nlohmann::json result_head(const char* experiment) {
+nlohmann::ordered_json result_head(const char* experiment) {
   return {{"schema", kResultSchema}, {"experiment", experiment}, {"created_utc", recording_detail::utc_now()}, {"sdk_version", sdk_version()}};
 }
 

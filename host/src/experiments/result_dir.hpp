@@ -30,8 +30,9 @@ void write_text_file(const std::filesystem::path& p, const std::string& text);
 std::filesystem::path prepare_result_directory(const std::filesystem::path& dir, Overwrite overwrite,
                                                const char* who);
 
-/// The head every result.json starts with: schema, experiment, created_utc, sdk_version.
-nlohmann::json result_head(const char* experiment);
+/// The head every result.json starts with: schema, experiment, created_utc, sdk_version, in that
+/// order; the writers add the other top-level keys in docs/result-format.md's order after it.
+nlohmann::ordered_json result_head(const char* experiment);
 
 /// Creates the hidden sibling of `dir` (absolute, normalised), lets `fill` write the files into
 /// it, adds the manifest of what fill wrote, flushes and renames it to `dir` (an existing `dir`

@@ -219,9 +219,9 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
 
   const std::string text =
       rd::sidecar_document(s).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-  std::FILE* json = create_temporary(w.json_final, w.json_temporary);
-  const bool written = std::fwrite(text.data(), 1, text.size(), json) == text.size();
-  if (!sync_and_close(json) || !written)
+  std::FILE* sidecar_file = create_temporary(w.json_final, w.json_temporary);
+  const bool written = std::fwrite(text.data(), 1, text.size(), sidecar_file) == text.size();
+  if (!sync_and_close(sidecar_file) || !written)
     throw RecordingError(w.json_final.string(), 0, "cannot write: " + errno_text());
 
   std::error_code ec;

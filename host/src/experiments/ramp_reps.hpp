@@ -11,7 +11,7 @@
 
 #include "palp/probe.hpp"
 
-namespace palpctl {
+namespace palp::experiment {
 
 class RampReps {
  public:
@@ -77,4 +77,4 @@ class RampReps {
   double bottom_t_s_ = 0;
 };
 
-}  // namespace palpctl
+}  // namespace palp::experiment
