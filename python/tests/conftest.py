@@ -12,6 +12,11 @@ import time
 
 import pytest
 
+import palp
+
+# replies wait this long: the tests run beside whole builds on two cores (load 10+)
+TIMEOUT_S = 10.0
+
 BANNER = re.compile(r"palp-sim listening on tcp://127\.0\.0\.1:(\d+) \(device protocol\), "
                     r"control on tcp://127\.0\.0\.1:(\d+)")
 
@@ -35,6 +40,10 @@ class Sim:
         robot = re.search(r"robot bridge on tcp://127\.0\.0\.1:(\d+)", line)
         self.robot_uri = f"modbus://127.0.0.1:{robot.group(1)}" if robot else None
         self.uri = f"sim://127.0.0.1:{self.port}"
+
+    def probe(self, **options) -> palp.Probe:
+        """A palp.Probe connected to this simulator, patient with a loaded machine."""
+        return palp.Probe(self.uri, timeout_s=TIMEOUT_S, **options)
 
     def control(self, line: str) -> str:
         """One line on palp-sim's control channel; its one-line reply."""

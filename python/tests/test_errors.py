@@ -44,7 +44,7 @@ def test_a_malformed_recording_is_a_recording_error_naming_file_and_line(tmp_pat
 
 
 def test_a_refused_parameter_is_a_device_error_with_its_code(sim):
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         params = probe.params()
         params.control_rate_Hz = 12345  # in the catalogue's range, refused by the device
         with pytest.raises(palp.DeviceError) as e:

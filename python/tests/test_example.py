@@ -22,5 +22,6 @@ def test_the_notebook_example_maps_the_pad_and_reanalyses_a_point(pad_sim, tmp_p
     r = subprocess.run([sys.executable, example], env=env, capture_output=True, text=True, timeout=280)
     assert r.returncode == 0, r.stderr
     assert "complete: True" in r.stdout
+    assert "soft columns: [2]" in r.stdout  # the pad's soft line under the middle point
     assert (tmp_path / "map" / "map.json").exists()
     assert "model " in r.stdout

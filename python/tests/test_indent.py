@@ -15,7 +15,7 @@ def indent_once(sim, out_dir):
     settings.repetitions = 2
     settings.stream_rate_Hz = 200
     phases = []
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         run = palp.indent(probe, settings, lambda p: phases.append(p.phase))
     written = run.write_result(out_dir)
     return run, phases, written
@@ -59,7 +59,7 @@ def test_settings_round_trip_through_the_result_json_parameters():
 def test_a_bad_setting_is_a_config_error_naming_it_before_the_device_moves(solid_sim):
     s = palp.IndentationSettings.preset("1d")
     s.stream_rate_Hz = 2000
-    with palp.Probe(solid_sim.uri) as probe:
+    with solid_sim.probe() as probe:
         with pytest.raises(palp.ConfigError, match="stream_rate_Hz"):
             palp.indent(probe, s)
         assert probe.status().program_state == "idle"

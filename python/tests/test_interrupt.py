@@ -23,7 +23,7 @@ CHILD = textwrap.dedent("""
         if p.phase == "ramp" and not announced:
             announced.append(True)
             print("ramp", flush=True)
-    probe = palp.Probe(sys.argv[1])
+    probe = palp.Probe(sys.argv[1], timeout_s=10)
     try:
         palp.indent(probe, settings, progress)
         print("finished", flush=True)
@@ -50,6 +50,8 @@ def test_sigint_mid_ramp_leaves_the_coil_at_zero_and_raises_keyboard_interrupt(s
     assert out.startswith("interrupted"), out
     assert float(words["i_cmd_A"]) == 0.0
     assert words["program_state"] != "running"
-    assert abs(float(words["coil_A"])) < 1e-3  # the simulated coil's true current
+    # the simulated coil's true current: at 0 A commanded it rests within the current loop's
+    # noise (about 1 mA), far below the ramp's 0.5 A .. 3 A
+    assert abs(float(words["coil_A"])) < 0.02
     assert solid_sim.wait_no_client()
-    assert abs(float(solid_sim.status()["coil_A"])) < 1e-3
+    assert abs(float(solid_sim.status()["coil_A"])) < 0.02

@@ -6,7 +6,7 @@ import palp
 
 
 def test_info_and_status_describe_the_simulator(sim):
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         assert probe.info.serial == "SIM-0001"
         assert probe.info.control_rate_Hz == 20000
         assert probe.uri == sim.uri
@@ -16,7 +16,7 @@ def test_info_and_status_describe_the_simulator(sim):
 
 
 def test_params_are_read_set_and_read_back(sim):
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         params = probe.params()
         assert params.current_clamp_A == pytest.approx(3.2)
         assert "current_clamp_A" in palp.Params.fields
@@ -27,14 +27,14 @@ def test_params_are_read_set_and_read_back(sim):
 
 
 def test_calibration_lists_its_tables(sim):
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         cal = probe.calibration()
         assert len(cal.pressure_gain) == 6
         assert len(cal.kf_N_per_A) == len(cal.kf_position_counts)
 
 
 def test_a_hold_program_runs_to_its_end(sim):
-    with palp.Probe(sim.uri) as probe:
+    with sim.probe() as probe:
         result = probe.run(palp.HoldProgram(current_A=0.3, duration_s=0.5), timeout_s=10)
         assert result.kind == "hold" and result.end == "completed"
         assert result.t_device_s >= 0.5
