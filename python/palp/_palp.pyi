@@ -350,6 +350,44 @@ class IndentationRun:
 def indent(probe: Probe, settings: IndentationSettings,
            progress: Optional[Callable[[IndentProgress], None]] = None) -> IndentationRun: ...
 
+# --- identification (palp/identification.hpp) ---------------------------------------------------
+class IdentificationSettings:
+    def __init__(self) -> None: ...
+    @staticmethod
+    def preset(name: str) -> IdentificationSettings: ...
+    @staticmethod
+    def from_dict(d: dict[str, Any]) -> IdentificationSettings: ...
+    in_contact: bool
+    bias_A: float
+    amplitude_A: float
+    f_lo_Hz: float
+    f_hi_Hz: float
+    step_Hz: float
+    fundamental_Hz: float
+    line_step: int
+    measured_periods: int
+    stream_rate_Hz: float
+    settle_s: float
+    method: str
+    def validate(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class IdentificationRun:
+    settings: IdentificationSettings
+    recording: Recording
+    program: ProgramResult
+    interrupted: bool
+    samples_missing: int
+    analysis_reason: str
+    has_analysis: bool
+    def summary(self) -> dict[str, Any]: ...
+    def frf_table(self) -> Optional[str]: ...
+    def write_result(self, dir: _Path, overwrite: bool = False) -> str: ...
+
+def identify(probe: Probe, settings: IdentificationSettings,
+             progress: Optional[Callable[[str, float, float], None]] = None) -> IdentificationRun: ...
+def _analyze_sweep(recording: Recording) -> dict[str, Any]: ...
+
 # --- recordings and the offline analysis (palp/recording.hpp) -----------------------------------
 class Recording:
     def __init__(self, columns: dict[str, Sequence[float]]) -> None: ...

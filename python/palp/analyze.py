@@ -36,6 +36,13 @@ def indentation(source: RecordingLike, params: Optional[_palp.IndentationParams]
     return _palp._analyze_indentation(recording(source), params if params is not None else _palp.IndentationParams())
 
 
+def sweep(source: RecordingLike) -> dict:
+    """A recording palp.identify (or `palpctl sweep`) wrote, analysed again: the frequency
+    response's second-order fit as the SDK's sweep_summary_json (omega_n_rad_per_s, zeta,
+    k_N_per_mm, ...), or {"analysis_reason": ...} when the data give none."""
+    return _palp._analyze_sweep(recording(source))
+
+
 def to_pandas(source: RecordingLike):
     """A recording's columns as a pandas.DataFrame (pandas must be installed)."""
     try:

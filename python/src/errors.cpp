@@ -61,41 +61,41 @@ void bind_errors(py::module_& m) {
 
   py::register_exception_translator([](std::exception_ptr p) {
     if (!p) return;
-    const Classes& c = *classes;
+    const Classes& k = *classes;
     try {
       std::rethrow_exception(p);
     } catch (const palp::ConfigError& e) {
-      raise(c.config, e, {});
+      raise(k.config, e, {});
     } catch (const palp::RobotLinkError& e) {
-      raise(c.robot_link, e, {});
+      raise(k.robot_link, e, {});
     } catch (const palp::ConnectionError& e) {
-      raise(c.connection, e, {});
+      raise(k.connection, e, {});
     } catch (const palp::TimeoutError& e) {
-      raise(c.timeout, e, py::dict(py::arg("waited_for") = e.waited_for(), py::arg("timeout_s") = e.timeout_s()));
+      raise(k.timeout, e, py::dict(py::arg("waited_for") = e.waited_for(), py::arg("timeout_s") = e.timeout_s()));
     } catch (const palp::VersionError& e) {
-      raise(c.version, e, {});
+      raise(k.version, e, {});
     } catch (const palp::DeviceError& e) {
-      raise(c.device, e,
+      raise(k.device, e,
             py::dict(py::arg("request") = e.request(), py::arg("code") = e.code(),
                      py::arg("field_index") = e.field_index(), py::arg("detail") = e.detail()));
     } catch (const palp::FaultError& e) {
-      raise(c.fault, e, py::dict(py::arg("reason") = e.reason()));
+      raise(k.fault, e, py::dict(py::arg("reason") = e.reason()));
     } catch (const palp::ProtocolError& e) {
-      raise(c.protocol, e, {});
+      raise(k.protocol, e, {});
     } catch (const palp::RecordingError& e) {
-      raise(c.recording, e,
+      raise(k.recording, e,
             py::dict(py::arg("file") = e.file(), py::arg("line") = e.line(), py::arg("problem") = e.problem()));
     } catch (const palp::DataError& e) {
-      raise(c.data, e, {});
+      raise(k.data, e, {});
     } catch (const palp::RobotRejectedError& e) {
-      raise(c.robot_rejected, e,
+      raise(k.robot_rejected, e,
             py::dict(py::arg("result") = e.result(), py::arg("register_address") = e.register_address()));
     } catch (const palp::RobotFaultError& e) {
-      raise(c.robot_fault, e, {});
+      raise(k.robot_fault, e, {});
     } catch (const palp::FlashError& e) {
-      raise(c.flash, e, py::dict(py::arg("erased") = e.erased()));
+      raise(k.flash, e, py::dict(py::arg("erased") = e.erased()));
     } catch (const palp::Error& e) {
-      raise(c.error, e, {});
+      raise(k.error, e, {});
     }
   });
 }

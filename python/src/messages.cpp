@@ -94,11 +94,11 @@ Fields<M>& fields() {
 
 #define PALP_PY_FIELD(kind, type, n, name, since, def, lo, hi, unit, doc)                          \
   fields<M>().names.push_back(#name);                                                              \
-  fields<M>().getters[#name] = [](const M& m) { return field_to_python(m.name); };                \
-  fields<M>().setters[#name] = [](M& m, py::handle v) { field_from_python(v, m.name, #name); };   \
+  fields<M>().getters[#name] = [](const M& msg) { return field_to_python(msg.name); };            \
+  fields<M>().setters[#name] = [](M& msg, py::handle v) { field_from_python(v, msg.name, #name); }; \
   cls.def_property(                                                                                \
-      #name, [](const M& m) { return field_to_python(m.name); },                                   \
-      [](M& m, py::handle v) { field_from_python(v, m.name, #name); }, doc);
+      #name, [](const M& msg) { return field_to_python(msg.name); },                               \
+      [](M& msg, py::handle v) { field_from_python(v, msg.name, #name); }, doc);
 
 template <class M>
 void finish_class(py::class_<M>& cls, const char* py_name) {

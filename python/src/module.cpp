@@ -11,6 +11,7 @@ PYBIND11_MODULE(_palp, m) {
   palp_python::bind_probe(m);
   palp_python::bind_stream(m);
   palp_python::bind_experiments(m);
+  palp_python::bind_identification(m);
   palp_python::bind_analysis(m);
   palp_python::bind_robot(m);
 }

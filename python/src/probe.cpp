@@ -25,7 +25,7 @@ palp::ProgramResult wait_interruptibly(Probe& probe, double timeout_s) {
   Interrupt interrupt;
   const auto end = std::chrono::steady_clock::now() + ms(timeout_s);
   {
-    py::gil_scoped_release release;
+    py::gil_scoped_release unlocked;
     for (;;) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
       try {
