@@ -121,7 +121,7 @@ elseif(py_ext)
 endif()
 if(site)
   step("import palp" ${CMAKE_COMMAND} -E env PYTHONPATH=${site} /usr/bin/python3 -c
-       "import palp, os; print('palp from', os.path.dirname(palp.__file__))")
+       "print('palp from', __import__('os').path.dirname(__import__('palp').__file__))")  # no ';': a CMake list
   expect_in("${step_output}" "import palp" "palp from ${site}")
 else()
   message(STATUS "NOTE: the package has no Python module (this build has no \"python\" install "
