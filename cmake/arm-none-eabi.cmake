@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Toolchain file: Cortex-M4F (STM32G474, QEMU mps2-an386) with Debian's gcc-arm-none-eabi.
 # Freestanding C++: no exceptions, no RTTI, no heap; linked with arm-none-eabi-gcc (not g++), so
 # libstdc++ is never linked (Debian's libstdc++-arm-none-eabi-dev gives the headers only).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # CPack's project config file (cmake/deb.cmake), read by cpack after CPackConfig.cmake. When the
 # environment names a staged install, PALP_CPACK_STAGED_DIR (a `cmake --install` under DESTDIR,
 # so that it holds usr/...), the package is made of that tree as it is, instead of cpack

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The Debian package (CPack's DEB generator), included by cmake/packaging.cmake:
 #
 #   cmake --build build/<preset> && cd build/<preset> && cpack     -> palp_<version>_<arch>.deb

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Installation and the CMake package (native scope only).
 #
 #   cmake --install build/<preset> --prefix /opt/palp

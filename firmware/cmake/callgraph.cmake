@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The call graph of an image's code from GCC's -fcallgraph-info=su files, for cmake -P scripts
 # (check_isr_stack.cmake, ccm_sections.cmake) to include after setting CI_DIRS (comma-separated
 # object directories, searched for .ci files), optionally INDIRECT and CXXFILT.

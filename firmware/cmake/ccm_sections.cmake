@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes a linker-script fragment that places in CCM SRAM the code of every function an interrupt
 # handler can reach: the input sections `.text.<symbol>` (-ffunction-sections) of the functions
 # in the call graph below ROOT (callgraph.cmake: the .ci files of -fcallgraph-info=su, with the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Fails when a firmware image (or its .bin) is missing, or when its flash, RAM or CCM SRAM use
 # exceeds a budget. Sizes are summed from `arm-none-eabi-size -A` (section name, size, address):
 #   flash = every section stored in flash: those at 0x08000000.. plus the load images of .data and

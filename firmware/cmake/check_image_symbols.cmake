@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Fails when a firmware image contains heap or C++ exception machinery: the firmware has no heap
 # and no exceptions (DESIGN.md, "Firmware principles"), so any of these symbols means something
 # pulled in malloc or the unwinder.

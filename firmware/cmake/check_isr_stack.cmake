@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Bounds the stack an interrupt handler can use, from GCC's call-graph files, and fails past LIMIT
 # or wherever the bound cannot be known.
 #

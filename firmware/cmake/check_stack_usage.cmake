@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Fails when a listed function's frame in GCC's -fstack-usage output (.su files: "file:line:col:
 # function<TAB>bytes<TAB>static|dynamic|bounded") exceeds LIMIT bytes, is not static, or is absent.
 #

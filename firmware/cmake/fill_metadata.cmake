@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Post-build: fills image_size and image_crc32 of the image's metadata block (layout 1,
 # protocol/include/palp/protocol/image_metadata.hpp) in the .elf, then writes the .bin from it.
 #

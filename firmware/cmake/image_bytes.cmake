@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Binary helpers for the post-build scripts (fill_metadata.cmake, make_dfu.cmake), in plain CMake
 # so the build needs nothing but CMake and the cross toolchain.
 #

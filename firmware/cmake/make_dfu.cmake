@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Post-build: the DfuSe file (.dfu) of an STM32 image, for the ROM DFU bootloader and dfu-util.
 #
 #   cmake -DBIN=<image.bin> -DDFU=<image.dfu> -DOBJCOPY=<objcopy>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Converts the protocol's golden vectors (protocol/vectors/messages.txt and malformed.txt) into
 # a C++ header of const byte arrays for the firmware test image. Runs as a CMake script, so the
 # build needs nothing beyond CMake (no python, no xxd):

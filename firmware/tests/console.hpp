@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Text output for test images without printf: strings, characters, unsigned decimals and
 // fixed-width hex, streamed to the board console (UART0 on qemu). No heap, no buffering.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The protocol's golden vectors as the firmware test image holds them: one record per `vector`
 // of protocol/vectors/messages.txt and malformed.txt (format: protocol/SPEC.md section 11).
 // The tables themselves are generated at build time by firmware/cmake/vectors_to_header.cmake

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Benchmark image: how long receive() holds the tick guard (Controller::set_tick_guard), i.e. how
 // late a control tick can start because a command is being handed over, counted with SysTick
 // under `qemu-system-arm -icount shift=0` (1 SysTick count = 40 instructions;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Counting the instructions a piece of code runs, for the cost images under
 // `qemu-system-arm -icount shift=0` (reference/qemu-icount.md): SysTick counts them, 40 per count
 // (board/qemu/systick.hpp). Shared by palp-tick-cost and palp-usb-cost.

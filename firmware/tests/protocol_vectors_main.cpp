@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The protocol's golden vectors, checked on the target (Cortex-M4F, under QEMU mps2-an386):
 // the same palp_protocol library the firmware links, built by the cross compiler, must read and
 // write exactly the bytes the host SDK does.

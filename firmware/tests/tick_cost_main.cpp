@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Tick budget image: the instructions the firmware core spends in its worst case — a 400-line
 // multisine running while all 11 channels stream at the core's ceiling (fw::Streamer::kMaxRate_Hz,
 // 20 kHz: every tick at 20 kHz, every second tick at 40 kHz) — counted with SysTick under

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // USB device core cost image: the instructions firmware/usb's Device<H> (device.hpp) spends per
 // 64-byte bulk packet in each direction, counted with SysTick under `qemu-system-arm -icount
 // shift=0` (1 SysTick count = 40 instructions, identical on every run; reference/qemu-icount.md),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The suites' environment (bench.hpp): palp-sim or an image under QEMU as child processes, or
 // the bench that PALP_BENCH_URI names, checked once; the Scenario fixture; main().
 #include "bench.hpp"

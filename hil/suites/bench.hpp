@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where the HIL suites run, and the fixture every scenario derives from (README.md).
 //
 //   (nothing set)            the suites start palp-sim themselves (--port 0 --control-port 0

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Catalogue scenarios: the device speaks the message catalogue this SDK was built from
 // (protocol/include/palp/protocol/catalogue.hpp): it serves every request of it that the public
 // API sends, and refuses every value outside a field's catalogue range naming that field. What

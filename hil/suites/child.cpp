@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Child processes of the suites (child.hpp).
 #include "child.hpp"
 

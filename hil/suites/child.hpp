@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Child processes of the suites: the palp-sim or QEMU they run against, and the host-loss
 // scenario's doomed host. Each child dies with the suites (PR_SET_PDEATHSIG: SIGKILL), so a
 // suite killed by ctest's timeout leaves no QEMU or palp-sim behind.

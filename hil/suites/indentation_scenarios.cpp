@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A short indentation (the SDK's indent(), the paper's quasi-static protocol) on the specimen the
 // floating tip touches: its stiffness and depth are finite and consistent with the contact model
 // the analysis chose, and agree with the same run on the reference device when one is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Probe scenarios: known answers that hold on palp-sim and on a real probe controller alike.
 // The public SDK only (bench.hpp); what each one proves is in README.md.
 #include <gtest/gtest.h>

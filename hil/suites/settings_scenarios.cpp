@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device's settings: parameters and calibration set, read back exactly, and put back. What
 // each scenario proves is in README.md.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming at the device's own limit: the rate it advertises (DeviceInfo.max_stream_rate_Hz),
 // every channel, while a program runs. What the scenario proves is in README.md.
 #include <gtest/gtest.h>

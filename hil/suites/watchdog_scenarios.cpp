@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The host-loss watchdog: a host process holding current is killed (SIGKILL, no goodbye), and
 // the device must bring the coil to 0 A by itself within its heartbeat timeout. The doomed host
 // is this executable re-run with kHostLossChildFlag; it speaks the public SDK only, as every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recording options of `stream` and `run`, and their acquisition through palp::Recorder.
 #include "acquire.hpp"
 

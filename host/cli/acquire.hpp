@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What `stream` and `run` share: the recording's options, and the SDK's recorder
 // (palp/recorder.hpp: optional zeroing, stream, optionally a device program, every sample and gap
 // into a recording with its sidecar) with progress on stderr and Ctrl-C.

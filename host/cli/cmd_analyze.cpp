@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl analyze: re-analyse recordings without a device.
 //   analyze indentation --input run.csv   the quasi-static analysis (palp/analysis/indentation.hpp)
 //   analyze pressure --input run.csv      each channel's pressure against force, hysteresis

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl analyze sweep | freeair: frequency responses analysed without a device.
 //   analyze sweep --input FILE    a recording (its sidecar gives the program) or a table
 //                                 (f_Hz,re_m_per_N,im_m_per_N or f_Hz,mag_m_per_N,phase_deg)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl calibrate current-offset|pressure-zero|home|kf: measure, set in RAM, then commit to flash.
 // This is the one place the CLI writes the device's flash (zeroing before a measurement with
 // `run --zero-*` stays in RAM and is kept in the recording's sidecar instead).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl completion bash|zsh: the shell completion script, generated from palpctl's own CLI11
 // tree (CLI11 has no generator), so it offers exactly the commands and options --help shows:
 // hidden commands and hidden aliases (option_alias.hpp) are left out. The build runs it once and

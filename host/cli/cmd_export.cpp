@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl export: a map or a result directory as one dataset file, without a device.
 //   export --format csv INPUT --out FILE   the tidy CSV (palp/tidy_csv.hpp, docs/result-format.md)
 //   export --format hdf5 INPUT --out FILE  a recording, a result directory, an identification or a

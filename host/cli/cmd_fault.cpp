@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl fault show|clear: read the fault latch, or release it once its cause is gone.
 #include <iostream>
 

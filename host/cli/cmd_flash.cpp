@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl flash IMAGE: a firmware update through palp::flash::update (palp/flash.hpp), with its
 // steps and the DFU progress on stderr, --dry-run's plan on stdout, Ctrl-C honoured up to the
 // erase.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl indent: the quasi-static indentation at the probe's current position (palp::indent),
 // written as a result directory (palp::write_result), its analysed summary printed.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl info: who the device is, the handshake, its parameters, calibration, status and health.
 #include <iostream>
 

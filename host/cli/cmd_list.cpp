@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl list: every controller on this machine's USB, with serial, firmware and URIs.
 #include <iostream>
 

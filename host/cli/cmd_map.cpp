@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl map: the stiffness map of a plan (touch, indent, retract at every point), resumable;
 // palpctl analyze map: a saved map's stiffness grid and the soft and stiff lines in it.
 #include <cmath>

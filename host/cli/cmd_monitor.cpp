@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl monitor: live values a few times a second until Ctrl-C or --seconds. Each line is the
 // mean over the interval of the streamed samples, with the device's state and fault. With
 // --plot, the same stream goes to a live view in the browser instead (live_server.hpp: the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl params get|set|dump|restore: the device's parameters, as the protocol catalogue
 // (PALP_FIELDS_Params in protocol/include/palp/protocol/catalogue.hpp) names, types and bounds
 // them. No parameter is listed here: every one is reached through Params::visit (its FieldInfo:

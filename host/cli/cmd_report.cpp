@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl report: a result as people read it, without a device. The SDK does the work
 // (palp/report.hpp: make_report, write_report_html, write_report_svgs); docs/report.md says what
 // each report shows.

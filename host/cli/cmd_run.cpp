@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl run ramp|sine|sweep|hold: run a device program while streaming, into a recording.
 // The options mirror the protocol's Load* messages (protocol/include/palp/protocol/catalogue.hpp)
 // with the same defaults, in lab units (mm instead of encoder counts).

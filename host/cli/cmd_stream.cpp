@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl stream: record the stream for --seconds, no program (the device holds what it holds).
 #include <memory>
 

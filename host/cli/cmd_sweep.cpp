@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl freeair and palpctl sweep: the probe's frequency response at its current position
 // (palp::identify), written as a result directory (palp::write_identification_result) and the
 // analysis printed: in free air the instrument's m_v and b_v; in contact the fit and, with

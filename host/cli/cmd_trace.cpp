@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl trace: trace a plan's grid with the arm (guarded approaches), write trace.json, resume
 // after Ctrl-C or a crash. palpctl touch-off: register the work object with three touches.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl: exit codes, error mapping, lab-unit JSON of the SDK's structs, progress, Ctrl-C.
 #include "common.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's shared pieces: the global options, the exit codes, the error-to-exit-code mapping,
 // lab-unit conversions (the SDK is SI; the CLI prints mm, A, s, Hz, Pa, N/mm), output helpers
 // and the Ctrl-C flag.

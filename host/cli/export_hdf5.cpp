@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl export --format hdf5 (export_hdf5.hpp).
 #include "export_hdf5.hpp"
 

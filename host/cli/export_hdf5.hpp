@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl export --format hdf5 (issue 22): the HDF5 half of `palpctl export`, called by its
 // command (cmd_export.cpp). Built with palp::hdf5 only when HDF5 is found (PALP_HAVE_HDF5);
 // without it, hdf5_available() is false and the command says so.

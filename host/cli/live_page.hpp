@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live view's page (palpctl monitor --plot): one self-contained HTML document with Debian's
 // dygraphs (libjs-dygraphs) inlined, so the page needs nothing but its own server's /events.
 //

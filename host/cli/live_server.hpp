@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live view's HTTP server (palpctl monitor --plot): one page and one server-sent-events
 // stream, on POSIX sockets with poll(), run from the caller's thread (no threads of its own).
 //

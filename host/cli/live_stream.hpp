@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live view's feed (palpctl monitor --plot): drains a started stream kPushHz times a second
 // and broadcasts it to the page's server-sent-events clients, until Ctrl-C or the time is up.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl: the command-line tool over the palp SDK (README.md in this folder: commands, options,
 // exit codes). Lab units at the command line: mm, A, s, Hz, Pa; each option's unit is in its name.
 #include <CLI/CLI.hpp>

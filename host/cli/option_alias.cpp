@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hidden aliases for renamed options (option_alias.hpp).
 #include "option_alias.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Old spellings of renamed options (host/cli/README.md, "Renamed options"): each still parses
 // and means exactly the new option, but --help and the shell completion show only the new name.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's shared sweep options and analysis output (sweep_options.hpp).
 #include "sweep_options.hpp"
 

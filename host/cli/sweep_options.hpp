@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The options palpctl freeair, sweep and analyze sweep share (lab units in every name) and the
 // analysis they print: the fit, and with --static / --freeair the paper's decomposition and the
 // moduli (palp/identification_result.hpp has the JSON keys).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Renders Vega specs to standalone SVG files, server-side, with Debian's node-vega (no browser):
 //
 //   node vega-to-svg.js SPEC.json OUT.svg [SPEC2.json OUT2.svg ...]

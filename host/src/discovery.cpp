@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Discovery (discovery.hpp): the USB view (libusb: every device with the identity, opened to
 // read its serial number and product string, then closed) and the HID view (hidapi's
 // enumeration, and a trial open for the permissions note), merged by serial number.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Images from .elf/.bin/.dfu files and their metadata as text (image_file.hpp).
 #include "palp/protocol/image_file.hpp"
 

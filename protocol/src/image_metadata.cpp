@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The image metadata parser (image_metadata.hpp): byte offsets read little-endian, so it reads
 // the same on any host whatever its struct layout.
 #include "palp/protocol/image_metadata.hpp"

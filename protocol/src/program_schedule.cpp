@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Program timing (program_schedule.hpp). Load-time code: double arithmetic is allowed here.
 #include "palp/protocol/program_schedule.hpp"
 

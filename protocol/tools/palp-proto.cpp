@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-proto: the protocol's own tool. Prints the version, schema and SPEC tables, writes the
 // golden vectors, decodes wire bytes, prints a firmware image's metadata, and runs the protocol
 // demo (scripts/demo).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-rb-constants: generates the robot bridge's register constants for the languages outside the
 // C++ build from the one definition of the map, robot_bridge/map.hpp, through the same X-macro
 // expansion the C++ codec uses: RegisterMap.java (the Sunrise bridge, host/robot/sunrise) and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """palp: the palp SDK for Python (docs/python.md).
 
     import palp

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Type stubs for palp._palp, the bound SDK (hand-written; python/tests/test_stubs.py checks that
 # they name every public attribute of the module and of each class, and nothing else).
 # Units: SI, in every name. Enums are their catalogue names (str).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Analysis without a device: recordings from files or arrays (docs/python.md).
 
     import palp.analyze

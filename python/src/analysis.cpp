@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recordings and the analysis without a device. A recording's columns keep the file's names and
 // lab units (t_s, i_A, z_mm, sample_index, i_cmd_A, p1_Pa..p6_Pa, status, rep: docs/
 // recording-format.md), as numpy arrays; palp.analyze (analyze.py) builds on these.

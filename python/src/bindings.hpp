@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The binding's parts, one function per file, called by module.cpp in this order.
 #pragma once
 

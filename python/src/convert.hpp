@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conversions the bindings share: the SDK's JSON to Python objects and back, the catalogue's enums
 // as their names, and the wait that lets Ctrl-C through while the GIL is released.
 #pragma once

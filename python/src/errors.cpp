@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp.Error and its subclasses, mirroring host/include/palp/error.hpp, with the C++ message and
 // the error's own fields as attributes. palp.ConnectionError and palp.TimeoutError also derive
 // from Python's built-in ConnectionError and TimeoutError, palp.ConfigError from ValueError, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Experiments: palp.indent(probe, settings) with IndentationSettings / IndentationParams (SI, as
 // the C++ structs) and the IndentationRun it gives. run.summary() is the SDK's own JSON
 // (indentation_summary_json, pressure_summary_json): the keys `palpctl indent --json` prints.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Identification (palp/identification.hpp): the frequency response in contact or in free air,
 // stepped sine or multisine, and its second-order fit. run.summary() is the SDK's
 // sweep_summary_json (the keys of `palpctl sweep --json`); run.frf_table() the frf.csv text.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The protocol's messages the SDK takes and gives as they are (palp/probe.hpp): Params,
 // Calibration, the program structs and ProgramStatus. Bound from the catalogue's own field lists
 // (protocol/include/palp/protocol/catalogue.hpp), so a field added there appears here: every field

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp._palp: the SDK bound for Python (docs/python.md). The package palp re-exports it.
 #include "bindings.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp.Probe: one connection to a probe controller or palp-sim (palp/probe.hpp), SI units.
 // Every call that talks to the device releases the GIL; the waits (wait, run) wait in slices and
 // let Ctrl-C through: the program is stopped (coil to 0 A) and KeyboardInterrupt raised.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot and stiffness maps: palp.Robot(uri) (palp/robot.hpp), rig and plan files
 // (palp/rig.hpp), palp.map_plan and palp.analyze_map (palp/map.hpp). Ctrl-C during a map: the
 // SDK's `cancelled` turns true, the SDK stops the arm, leaves the coil at 0 A and raises the arm

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming into numpy: Probe.read(n) returns (samples, gaps), two structured arrays whose field
 // names carry SI units (docs/python.md):
 //   samples: index u8, t_s (device time), t_host_s, i_cmd_A, i_A, z_m, encoder_counts i4,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Fixtures for the palp module's tests: palp-sim as a process on ephemeral loopback ports.
 
 ctest passes the build's binaries in PALP_SIM and PALPCTL and the importable package root in

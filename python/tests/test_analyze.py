@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The analysis without a device, on synthetic recordings with a known answer."""
 
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The SDK's exceptions as Python classes, with the C++ message and fields."""
 
 import builtins

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """examples/python/indent_and_map.py runs against palp-sim with the pad and the robot bridge."""
 
 import os

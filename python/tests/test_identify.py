@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """palp.identify against palp-sim's solid phantom (the multisine in contact), and its result
 against palpctl's analysis of the recording it wrote."""
 

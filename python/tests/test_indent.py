@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """palp.indent against palp-sim's solid phantom, and its result against palpctl's on the same
 recording."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`cmake --install --component python` puts the package into Debian's dist-packages layout, and
 Debian's interpreter imports it from there."""
 

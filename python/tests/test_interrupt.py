@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Ctrl-C (a real SIGINT) during palp.indent: the SDK stops the ramp, the coil is at 0 A, and then
 Python sees KeyboardInterrupt."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """palp.Probe against palp-sim: info, status, params, calibration, health, programs."""
 
 import pytest

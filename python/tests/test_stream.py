@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Streaming into numpy against palp-sim: lossless, contiguous, SI fields."""
 
 import numpy as np

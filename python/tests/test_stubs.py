@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The hand-written stubs (palp/_palp.pyi, palp/analyze.pyi) name exactly what the module has, so
 they cannot drift silently from the bindings."""
 

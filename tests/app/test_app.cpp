@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The firmware app (firmware/app/include/palp/app/app.hpp) over a fake board that records what
 // the app asks of it: boot, the link, the tick, the tick guard, calibration storage, the
 // bootloader. The same App<Board> that the QEMU image runs, compiled for the host.

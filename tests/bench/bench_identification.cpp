@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The two contact identifications side by side (issue 7): the paper's stepped sine and the
 // multisine, on palp-sim's solid object at position 3 and a 1.0 A bias, against the plant's own
 // small-signal linearisation there. Prints for each method and amplitude the device time, the

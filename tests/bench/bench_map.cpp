@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The time to analyse indentations of the 2D protocol (issues 6, 16): one point, 3 repetitions
 // of the staircase 0.5 -> 3 A by 0.01 A every 25 ms with symmetric unload, sampled at 1 kHz
 // (37 500 samples), analysed as palp::analyze_run does it (every repetition alone, then all

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Protocol throughput on one core: encode and decode of the stream's largest frame (a full
 // 40-sample SampleBatch) and of a small command (LoadRamp), plus CRC-32 and COBS alone.
 // bytes_per_second counts wire bytes; items_per_second counts messages.

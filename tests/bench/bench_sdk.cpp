@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's figures: stream decode throughput on one core, and command round trips against
 // palp-sim over a loopback socket. Figures only: nothing here asserts a time.
 //

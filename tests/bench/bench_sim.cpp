@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's speed on one core: the firmware core and the physical model together, per control
 // tick, in the scenario issue 16 sets its target on: a 400-line multisine (0.25..100 Hz, 0.5 mA
 // a line about a 1.0 A bias, as the contact identification runs it) with the probe in contact,

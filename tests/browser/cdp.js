@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A small browser driver for palp's page tests: Debian's Chromium (/usr/bin/chromium), headless,
 // driven over the Chrome DevTools Protocol on a pipe (--remote-debugging-pipe: JSON messages
 // separated by NUL bytes on file descriptors 3 (to the browser) and 4 (from it)). No npm package,

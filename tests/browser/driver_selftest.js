@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Proves the driver (cdp.js) sees what the page tests rely on: console.error calls and uncaught
 // exceptions are collected, a click reaches the page, waitFor times out with the expression, and
 // a screenshot is a PNG of what is drawn (a red square: red pixels present, not a blank page).

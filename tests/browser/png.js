@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reads a PNG screenshot's pixels (8-bit RGB or RGBA, non-interlaced: what Chromium writes) with
 // Node's zlib, so page tests can check that something was drawn: pngStats(buffer) gives width,
 // height, fraction(predicate over [r, g, b, a]) and distinctColours (a blank page has one).

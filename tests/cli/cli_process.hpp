@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Processes for the palpctl tests: palp-sim on ephemeral ports (its banner read, no socket of
 // its own opened: palp-sim serves one device client, and that is palpctl) and palpctl itself,
 // with its exit code, stdout and stderr.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live view's server (host/cli/live_server.hpp) in-process: an event client that stops
 // reading is dropped once its unsent events pass the limit, while a client that reads gets every
 // event; and which addresses count as loopback. (Requests, answers and binds through palpctl:

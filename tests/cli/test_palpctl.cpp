@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's command line: every command's --help, the unit in every dimensional option's name,
 // and the exit codes of usage and connection errors. No device needed except where stated.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl analyze: the real palpctl on recordings of KNOWN truth written with the SDK's recording
 // writer (a Hertz or linear object at a known contact point, the paper's instrument constants),
 // the JSON values checked against that truth, and the exact one-line error for each kind of bad

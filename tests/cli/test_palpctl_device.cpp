@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's device commands against a real palp-sim (one per test; palp-sim serves one device
 // client at a time, so every palpctl run waits until it has seen the previous one go).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's exit paths against a real palp-sim (issue 17, items 2, 4 and 9): a lost reply during
 // indent leaves no program, 0 A and no latched fault; --overwrite and a map's point directories
 // never delete a file palp did not write; with the fault latch set run, indent and map all exit

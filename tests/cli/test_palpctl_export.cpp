@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl export --format csv: the tidy CSV of a synthetic map (written by the SDK's own writers,
 // known stiffnesses) read back by an independent reader, Debian's Python with its stdlib csv
 // module (/usr/bin/python3: the python3 first on PATH may be another), to full precision; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl flash against a real palp-sim, up to the bootloader (the DFU half runs against the ROM
 // model in tests/host/sim/test_flash_update.cpp): a wrong board, a corrupt image or an image of
 // another protocol major is refused with its exact message and the device untouched (palp-sim's

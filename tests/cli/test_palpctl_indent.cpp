@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl indent against a real palp-sim: the result directory, the --json keys, the refusals
 // that come before the device moves.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl's renamed options (host/cli/README.md, "Renamed options"): the old spelling still
 // works and means the new option, --help shows only the new one; and the shell completion.
 #include <gtest/gtest.h>

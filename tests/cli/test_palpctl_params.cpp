@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl params get|set|dump|restore against a real palp-sim: every parameter of the catalogue
 // (compared with proto::Params::kFields, not with a list written here), values checked against
 // the catalogue's ranges before anything is sent, a dump restored exactly.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl stream / run write what the SDK's recorder (palp/recorder.hpp) writes: against one
 // real palp-sim, a recording by palpctl and one by palp::record with the same settings have the
 // same CSV header and the same sidecar keys, in the same order.

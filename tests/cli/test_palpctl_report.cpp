@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl report: a synthetic 9 x 9 map (the SDK's own writers; columns 2, 5 and 8 soft) as one
 // HTML page and its SVG files, with --json naming them; the page's embedded map marks exactly
 // those columns; the refusals (an existing page without --overwrite, a file palp did not write,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl analyze sweep | freeair without a device (tables of a known system, the paper's
 // free-air numbers, the --static rules), and palpctl sweep | freeair | calibrate kf against a
 // real palp-sim: the result directory, its re-analysis, the refusals before anything moves.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl trace against palp-sim with its robot bridge: Ctrl-C (a real SIGINT) mid-plan leaves
 // the arm at the safe height and a partial trace.json; --resume finishes it without repeats.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Checks that a static library was cross-compiled for the Cortex-M4F: every object is 32-bit
 # little-endian ARM (objdump -f: elf32-littlearm, armv7e-m), built for ARMv7E-M with the
 # single-precision FPU and the hard-float calling convention (readelf -A).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The STM32 image's .dfu checked by dfu-util's own tools (Debian's dfu-util 0.11 package):
 #   dfu-suffix --check  exits 0 and shows 0483:df11, bcdDFU 0x011A, length 16
 #   dfuse-pack --dump   one target with one element at 0x08000000 whose dumped bytes equal the

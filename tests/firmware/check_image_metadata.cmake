@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # `palp-proto image` on a built firmware image: the exact text for its .elf, .bin (and .dfu), the
 # expected values found independently of palp-proto (size: the .bin's length; CRC: computed here
 # by firmware/cmake/image_bytes.cmake; protocol: `palp-proto version`; firmware version: the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Included by the QEMU runners (run_qemu_image.cmake, run_firmware_smoke.cmake): finds
 # qemu-system-arm and timeout and checks that IMAGE exists, failing with what to do (HINT names the
 # build command for a missing image). Sets QEMU and TIMEOUT.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Damaged copies of an image file for the metadata and .dfu tests, in plain CMake: the file goes
 # through Intel HEX text (`objcopy -I binary -O ihex`, 16-byte records), the text is edited, and
 # objcopy writes it back (CMake strings cannot hold NUL bytes: firmware/cmake/image_bytes.cmake).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Smoke test of the firmware image under QEMU: the image boots, serves the SDK over UART0 on a
 # TCP chardev, and holds a current. Passes only when
 #   - palpctl info reads a compatible handshake, board qemu-mps2-an386 and the advertised

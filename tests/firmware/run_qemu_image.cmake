@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Runs a firmware test image on QEMU's mps2-an386 (Cortex-M4F) and passes only when QEMU exits
 # with code 0 (the image's semihosting exit) and the image's UART output matches PASS_REGEX.
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the firmware core's command dispatch: a compatible Hello, then the input
 // as host bytes, handed to Controller::receive in chunks with control ticks, service() and
 // transmit() between them (as a board's main loop does). The input's first byte picks the chunk

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the frequency-response table reader (palp/analysis/frf_table.hpp): the
 // input parsed as a table, and looked at by is_frf_table from a file. Properties:
 //  - nothing crashes, reads out of bounds or throws anything but palp::RecordingError;

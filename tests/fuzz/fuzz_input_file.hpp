@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fuzz input as a file the readers open by path: one memfd per process, rewritten for every
 // input and named by /proc/self/fd (no disk, no clean-up).
 #pragma once

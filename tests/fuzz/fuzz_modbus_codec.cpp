@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the robot bridge's register codec (protocol/robot-bridge.md): the input
 // as big-endian 16-bit registers, decoded as each block and checked as a command (§3), as the
 // bridge and the robot client do with registers from the wire. Properties:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for everything that reads protocol bytes from outside: the frame reader
 // (COBS, CRC, header checks) and every message decoder. Properties checked on every input:
 //  - nothing crashes, reads out of bounds or allocates (ASan/UBSan watch);

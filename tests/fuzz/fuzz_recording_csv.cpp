@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the recording CSV reader (docs/recording-format.md): the input as a
 // run.csv read by read_recording (without a sidecar) and by recording_row_lines. Properties:
 //  - nothing crashes, reads out of bounds or throws anything but palp::RecordingError;

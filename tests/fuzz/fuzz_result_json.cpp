@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the result-directory and trace readers (docs/result-format.md): the input
 // as a result directory's result.json read by load_result, and as a trace file read by
 // load_trace. Properties:

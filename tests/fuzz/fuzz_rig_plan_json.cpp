@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the rig and plan file readers (docs/rig-and-plan.md): the input parsed as
 // a rig and as a plan, and read from a file as both (the bounded read). Properties:
 //  - nothing crashes, reads out of bounds or throws anything but palp::ConfigError;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp_fuzz_seeds: seed corpora for the fuzz targets from the repository's own files, so the
 // seeds follow the formats as the docs and vectors do (they cannot drift).
 //   palp_fuzz_seeds docs OUT FILE.md...      every fenced code block of each file, one file each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the recording sidecar reader (docs/recording-format.md): the input as a
 // run.json read by read_sidecar. Properties:
 //  - nothing crashes, reads out of bounds or throws anything but palp::RecordingError;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for palp-sim's control channel: each input line (split at '\n', as the
 // channel splits its byte stream) through parse_control. Properties:
 //  - nothing crashes or reads out of bounds (ASan/UBSan watch);

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Runs one libFuzzer target for SECONDS (or RUNS executions, whichever comes first) from fresh
 # seeds and the corpus it has grown so far, and writes its log to WORK/fuzz.log.
 #   -DFUZZER=binary -DWORK=dir -DSECONDS=n [-DMAX_LEN=bytes]

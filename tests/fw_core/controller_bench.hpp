@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The test bench of the controller tests: a Controller, a host that frames requests and reads
 // every device frame back, and an exact RL coil on the other side of the tick. Virtual control
 // time and a separate watchdog clock (wd_us_), as on hardware.

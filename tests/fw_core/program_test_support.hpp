@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared by the program tests: loading with checks, the paper's programs as Load* messages.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calibration block (firmware/core/include/palp/fw/calibration.hpp): layouts, migration,
 // error reporting, proto::Calibration conversion.
 #include "palp/fw/calibration.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The controller end to end at the protocol level: a host's frames in, the device's frames out,
 // with an exact RL coil on the other side of the tick. Virtual control time and a separate
 // watchdog clock, as on hardware.

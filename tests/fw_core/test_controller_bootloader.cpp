@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EnterBootloader in every session state (SPEC.md §6.1, §6.2): a frozen request, so any host —
 // one that never said Hello, one the device judged incompatible, one whose frames carry another
 // major — can put the controller into its ROM bootloader and reflash it (issue 21). Its own

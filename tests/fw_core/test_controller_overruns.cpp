@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Control overruns: ticks a board's timer let fall due without running them (TickInputs::
 // missed_ticks) are counted in Health.control_overruns, and the tick that reports them runs as
 // any other (device time counts only ticks that ran).

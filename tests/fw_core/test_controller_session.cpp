@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The protocol's refusals as the controller makes them (SPEC.md §6.2, §6.3, §9.1): the Hello
 // gate, which refusal wins when several apply, the Nak fields, the last stream batch after the
 // StreamStop Ack, the Health snapshot's own request, and each fault reason's EventFault.detail.

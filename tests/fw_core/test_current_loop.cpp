@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CurrentLoop (firmware/core/include/palp/fw/current_loop.hpp) against an exact RL coil model.
 //
 // The coil in these tests: i' = (v - R i) / L with R = 5.8 ohm, L = 2.07 mH, the voltage held

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Encoder (firmware/core/include/palp/fw/encoder.hpp): 16-bit extension, velocity, index.
 #include "palp/fw/encoder.hpp"
 

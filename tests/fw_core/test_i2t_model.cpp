@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The coil I²t model (firmware/core/include/palp/fw/i2t_model.hpp) through Safety::check(), tick
 // by tick at 20 kHz, on the paper's protocols and on a 3 A hold.
 //

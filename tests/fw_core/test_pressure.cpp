@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PressureChannels and the sensor calibration helpers (firmware/core/include/palp/fw/pressure.hpp).
 //
 // Known answers from the stated transfer p = (code - 2048) * 1245.42 / 1638.4 Pa

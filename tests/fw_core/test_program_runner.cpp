@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The program runner's life cycle (load, start, stop, fault, restart, status) and the
 // validation of every Load* message: refusals name the offending field as Nak does.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The on-device programs, tick by tick, with known answers: exact timing in ticks, set-points,
 // ends, the displacement limit against a synthetic encoder, the contact threshold. The runner's
 // life cycle and the validation are in test_program_runner.cpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ring (firmware/core/include/palp/fw/ring.hpp): the transmit buffer's bulk push and pop.
 #include "palp/fw/ring.hpp"
 

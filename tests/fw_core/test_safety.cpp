@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safety (firmware/core/include/palp/fw/safety.hpp): clamp, overcurrent, travel, I²t latch,
 // heartbeat watchdog on its own clock, external trips, clear().
 #include "palp/fw/safety.hpp"

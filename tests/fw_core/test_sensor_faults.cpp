@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensor and actuator faults (firmware/core/include/palp/fw/sensor_monitor.hpp): each check's
 // exact trip tick and detail on synthetic readings, the normal runs it must leave alone, and the
 // controller's reaction end to end: the latch with its reason and detail, 0 V in the tick that

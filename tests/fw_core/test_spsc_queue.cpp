@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SpscQueue and OverflowCounter (firmware/core/include/palp/fw/spsc_queue.hpp).
 #include "palp/fw/spsc_queue.hpp"
 

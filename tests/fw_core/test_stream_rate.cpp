@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The board's stream rate limit (DeviceIdentity::max_stream_rate_Hz, SPEC.md §9.1): advertised
 // in DeviceInfo, enforced by StreamConfigure (stream_too_fast naming decimation, the limit in
 // Nak.detail), and kept by the default stream and across control-rate changes.

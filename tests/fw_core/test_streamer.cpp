@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stream, thread side: configuration, decimation, batches of consecutive samples with exact
 // times, and every loss reported once at the stage where it happened.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command hand-off (controller.hpp, TickGuard): receive() changes the tick's state only inside
 // the board's guard, synthesises a Load*'s program outside it, and answers exactly as without a
 // guard. A recording guard fingerprints the tick's state (every member tick() reads or writes) at

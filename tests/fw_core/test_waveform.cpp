@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Waveform primitives and the multisine generator, against double-precision references.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -P script behind the packaging_analysis_only test (tests/packaging/CMakeLists.txt): an
 # outside project links palp::analysis and palp::recording alone on a machine without the device
 # libraries' dev packages, simulated by hiding every pkg-config module (PKG_CONFIG_LIBDIR = an empty directory).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -P script behind the packaging_consumer test (tests/packaging/CMakeLists.txt).
 #   1. cmake --install PALP_BUILD_DIR --prefix WORK_DIR/prefix   (every component)
 #   2. the installed tree holds the libraries, headers, package files, tools and udev rules

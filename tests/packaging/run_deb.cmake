@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -P script behind the packaging_deb test (tests/packaging/CMakeLists.txt): the .deb of
 # cmake/deb.cmake, made and checked without changing anything on the machine and without a build.
 #   1. cmake --install PALP_BUILD_DIR into WORK_DIR/stage (DESTDIR, prefix /usr), then cpack from

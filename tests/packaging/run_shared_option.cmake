@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -P script behind the packaging_shared_option test (tests/packaging/CMakeLists.txt): a
 # configure of this source tree with PALP_SHARED=ON in a scratch build directory (no build: a
 # second build of the SDK is too slow for the test suite) succeeds, and the generated build links

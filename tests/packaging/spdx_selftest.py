@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # packaging_spdx_script: scripts/spdx on a scratch git checkout with one file of each kind:
 # `check` lists exactly the source files without the licence line, `apply` gives each of them the
 # line in its comment syntax (after a "#!" line and a Python coding line) and changes nothing else,

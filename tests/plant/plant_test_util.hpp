@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers for the plant tests: a current loop like the firmware's, a quasi-static staircase,
 // ring-down analysis and the paper's plain least-squares fits.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Coil: the K_f(s) table (points, flat working range), RL electrics, supply clamp, back-EMF.
 #include <gtest/gtest.h>
 

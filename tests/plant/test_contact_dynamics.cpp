@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact dynamics at position 3 under the paper's 1.0 A bias (§IV-B): a small ring-down about
 // the operating point shows the paper's natural frequencies and damping ratios (insert > solid >
 // hollow), which the participating masses and Kelvin-Voigt retardation times were chosen for.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Elastic contact laws: Hertz, exact Sneddon sphere, the bottom effect, the series structural
 // spring; values against closed forms and against analysis-notes' worked numbers.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The QEMU board's float plant (firmware/board/qemu/plant) against hil/plant's Plant in the same
 // scene (solid_1d, position 3, the floating tip just touching): the same voltage sequences into
 // both, states and sensors compared tick by tick, and the quasi-static force-indentation curve

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The plant's small-signal linearisation (linearisation.hpp): the static equilibrium it solves
 // is where the simulated coil settles, and its omega_n / zeta are the numbers the phantoms were
 // tuned to (solid position 3 at 1.0 A: 66.31 rad/s, phantom file) and the free-air 16.51 rad/s.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Mechanics in free air: ring-down at the paper's omega_d and zeta, float position, free-air
 // compliance, end stops.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The mount (robot side): an approach at 1 mm/s is seen as 200 counts of coil motion soon after
 // touching (paper §II-B); a teleport adds no viscous force, a continuous move does; moving across
 // the pad changes the contact law under the tip.

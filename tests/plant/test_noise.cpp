@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sensors' Gaussian noise (noise.hpp, README.md "Noise"): a pure function of (seed, stream,
 // tick); standard normal in its moments, its distribution and its tails; no correlation from
 // tick to tick or between streams. Each statistic is taken over 10^6 draws and held to five of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The paper's 1D operating points (§IV-A) from simulated quasi-static staircases at position 3,
 // fitted as the paper does: F_o = K_f (i - I_c) - k_v dz against encoder depth, linear for the
 // hollow object and Hertz (delta^1.5) for the solid and the insert, evaluated at F_0 = 1.459 N.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 2D pad (§V): channel volumes, the row 8 / column 8 pressure rise on a ramp to 3 A, linear
 // pressure-force behaviour, and the stiffness map (columns 2, 5, 8 softer; deep rows faint).
 #include <gtest/gtest.h>

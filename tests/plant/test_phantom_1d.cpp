@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 1D objects along their ten positions (paper §IV-A, Fig. 4c), from their contact laws:
 // insert > solid > hollow at positions 1-4, the three agree at 6-10, position 8 is the stiffest
 // of 6-10, and over the hollow's void the stiffness hardly changes with depth.

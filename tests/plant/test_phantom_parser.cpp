@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Phantom files: the shipped ones load; malformed ones fail with one line "file:line: problem".
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

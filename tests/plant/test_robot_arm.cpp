@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotArm: trapezoidal linear motion, braking, tools, workspace (known answers).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensors: encoder quantisation, ADC transfer functions, noise spread, and repeatability: the
 // same seed gives the same run, whatever else is read.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The shipped phantoms are built into palp_plant as text (so an installed library needs no path
 // to them): the text is each file's, byte for byte, every file is there, and another name is
 // refused naming the shipped ones.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The spherical tip's first touch (sphere_touch, Plant's contact zero): on a plane tilted by
 // theta the apex stops R (1/cos(theta) - 1) above the surface under it, and touches off-axis at
 // the foot of the normal through the sphere's centre; flat tops are unchanged exactly.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Viscoelasticity: the Kelvin-Voigt force grows with indentation rate (so the ramp rate shows in
 // the force-depth loop), and the standard-linear-solid option relaxes, creeps and stiffens with
 // frequency while keeping the relaxed law the phantoms were tuned with.

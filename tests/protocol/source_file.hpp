@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A file of the source tree (PALP_SOURCE_DIR) as bytes, for tests that check code against the
 // documents it implements. An unreadable file fails the calling test and returns "".
 #pragma once

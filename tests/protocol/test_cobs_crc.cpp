@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // COBS and CRC-32 against published reference values and exhaustive round trips.
 #include <gtest/gtest.h>
 

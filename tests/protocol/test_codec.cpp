@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Payload codec: round trips of every catalogue message, exact bytes, defaults, the
 // compatibility rules for longer and shorter payloads, bounded arrays and range checks.
 #include <gtest/gtest.h>

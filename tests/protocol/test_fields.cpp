@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fields named at compile time (messages.hpp): field_index_of gives the numbers of SPEC.md §10.1
 // (written out here from the SPEC's tables, so the test checks the catalogue walk independently),
 // and fields_as copies every field between messages that share a field list.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frames on the wire: exact bytes, the incremental reader under any chunking, resynchronisation
 // after garbage, and one typed, counted reason for every malformed frame.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The handshake verdicts and the words a person reads for each.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The image metadata block (image_metadata.hpp) and the image files it is read from
 // (image_file.hpp), on images built byte by byte here from the layout in the header's comment
 // and the DfuSe/ELF formats; CRCs are known answers computed independently (Python's zlib.crc32).

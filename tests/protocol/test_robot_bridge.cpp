@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot bridge's register map (protocol/robot-bridge.md, robot_bridge/*.hpp): the int32
 // golden vectors, every block both ways, the typed decode errors, the command checks, and the
 // spec's tables and hex examples against this build.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // KUKA's ZYX pose convention (robot_bridge/pose.hpp): known rotations and round trips.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // protocol/robot-bridge.md against this build: its register and enumeration tables are the
 // map's (map.hpp), its hex register examples are golden vectors, its version is this build's.
 #include <gtest/gtest.h>

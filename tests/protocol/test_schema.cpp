@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The catalogue's integrity and its schema hash.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The worked examples of protocol/SPEC.md §12 read as an independent implementation reads them:
 // the header line, the payload bytes of the tables, the CRC and the wire bytes of each example
 // must agree with each other and with this build's encoder, so no part of an example can drift

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stream samples: layout by channel mask, scaling and the byte-rate arithmetic.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The golden vectors in protocol/vectors/ and the generated blocks of protocol/SPEC.md against
 // this build: files, bytes, decoded values and reject reasons.
 #include <gtest/gtest.h>

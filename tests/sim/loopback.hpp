@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A loopback client socket for the tests that talk to palp-sim's ports themselves.
 #pragma once
 

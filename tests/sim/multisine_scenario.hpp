@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The load palp-sim's speed is measured under (bench_sim) and its output pinned by (sim_reference_
 // tests), issue 16: a Simulation on a phantom with the coil 25 mm out of the surface at a site, every
 // channel streamed at 10 kHz, and a 400-line multisine (0.25 Hz fundamental, 0.5 mA a line) about

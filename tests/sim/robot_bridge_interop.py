@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Interoperability of palp-sim's robot bridge with an independent Modbus stack.
 
 Debian's python3-pymodbus (3.0), run with the system interpreter /usr/bin/python3, talks to

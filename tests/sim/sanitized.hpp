@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Whether the test is built with AddressSanitizer: the longest simulations skip there (they run
 // in the release build).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tests' side of sim::Server: a loopback client socket, a server on ephemeral ports, and
 // stepping it in the test's thread.
 #pragma once

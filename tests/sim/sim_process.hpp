@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Starts palp-sim as a child process on ephemeral loopback ports and talks to it over real
 // sockets: the device protocol on one, the control channel on the other.
 #pragma once

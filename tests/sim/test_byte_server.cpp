@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's byte server over real loopback TCP and Unix sockets: bytes both ways, one client at
 // a time, disconnects noticed, and a bounded send buffer that refuses instead of growing.
 #include <gtest/gtest.h>

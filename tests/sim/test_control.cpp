@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's control channel: every command parses to its values; every bad line is refused with
 // a reason naming the command and the word.
 #include <gtest/gtest.h>

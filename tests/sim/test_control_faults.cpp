@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's control channel: the sensor and actuator fault commands (`fault ...`) parse to their
 // values in lab units; every bad line is refused naming the fault and the word.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Host loss end to end (issue 17, item 1): a real palp-sim process at real time, a real
 // `palpctl run hold --current-A 1 --seconds 30` process, killed (SIGKILL) or stopped (SIGSTOP)
 // after about a second; nobody reconnects. palp-sim's control `status` is polled until the

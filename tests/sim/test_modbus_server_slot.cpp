@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's Modbus server's one client slot (issue 17, item 6), driven directly with a handler
 // that answers every read, over real loopback sockets: the second client told who holds the
 // slot, a partial request and a silent client timed out, a client that polls kept.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim as a process, over real loopback sockets: the device protocol, malformed input, the
 // control channel, announced versions and the firmware core driving the physical model.
 #include <gtest/gtest.h>

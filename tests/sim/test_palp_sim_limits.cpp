@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim as a process against a flooding peer (issue 17, item 5): 200 MB on the control
 // channel with no newline leaves its resident memory bounded, and the channel answers after.
 #include <fcntl.h>

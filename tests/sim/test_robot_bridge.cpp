@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotBridge driven directly (no sockets): the §8 handshake, the cycle, rejections, guards, the
 // watchdog and the Modbus access rules of protocol/robot-bridge.md, with exact registers.
 #include <gtest/gtest.h>

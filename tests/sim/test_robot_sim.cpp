@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's robot bridge over a real socket (palp-sim --robot-port 0, a libmodbus client): one
 // client, exceptions, a command round trip, guarded approaches onto solid_1d with the force guard
 // and with the digital input (the controller's contact-output line), the watchdog, a connection

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotWorld in process: the frames of the shared world (probe on the flange, phantom in the base
 // frame), the plant's mount following the arm, and the contact line's latency to input 1.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensor and actuator faults end to end: palp-sim's control channel breaks a sensor or the power
 // stage while a hold runs and the full stream records; through the SDK the host sees the
 // EventFault (FaultInfo with its device time), the program end by the fault, the status with the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // sim::Server, palp-sim's loop, driven step by step in the test's thread with real loopback
 // sockets: pacing at a factor, the stall while the host has not drained, a held contact event,
 // and a control-channel command.

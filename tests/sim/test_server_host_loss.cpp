@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // sim::Server when the host is lost or the pace changes under it (issue 17, items 1 and 8),
 // stepped in the test's thread over loopback sockets: virtual time at real time with no client
 // (sleeping, whatever the pace), a host that neither drains nor sends no longer stalls it,

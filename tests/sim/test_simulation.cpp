@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The simulation's rules (hil/README.md) with the real firmware core and the real plant:
 // results independent of how the run is chunked, a contact event holding virtual time until the
 // host reacts, the reaction latency in virtual time, the wall-clock hold timeout, and frame loss

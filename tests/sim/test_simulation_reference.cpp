@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's results pinned bit for bit (issue 16): a change to the simulation, the plant or the
 // firmware core must not change what a run produces for a seed unless it says so. Each scenario
 // is the bench_sim one (tests/bench/bench_sim.cpp): a 400-line multisine about a 1.0 A bias with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-soak: a long stream at 10 kHz from palp-sim linked in (virtual time, as fast as the SDK
 // reads) with frames dropped and corrupted on the way to the host, and the audit of
 // docs/reliability.md section 7:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board class (firmware/board/stm32g474/stm_board.hpp) on a host register file, for
 // tests/stm32/test_board*.cpp: the hardware's part the board's init polls (ADC calibration ends,
 // ADEN raises ADRDY, ISR bits are write-1-to-clear), the USB peripheral's registers and PMA

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the calibration-flash tests share: distinct calibration blocks, the store on the flash
 // model, and a boot (reset + a fresh store + read) the way the board does it.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A host model of the STM32G474 flash controller and of the calibration pages it drives, as an
 // Access for the register seam (regs/register.hpp), enforcing the part's rules
 // (stm32g474-facts.md §1.2; NOTES.md "Calibration in flash"):

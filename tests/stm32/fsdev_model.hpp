@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A register-level model of the STM32G474 USB device peripheral (FSDEV), written from
 // stm32g474-facts.md §5 — not from the driver (usb_fsdev.hpp) — for host tests. It has two
 // sides:

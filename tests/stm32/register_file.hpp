@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A host register file for the STM32G474 drivers: an Access (regs/register.hpp) over a map of
 // 32-bit words that logs every write and plays the hardware's part for the flags the clock init
 // polls: PLLON -> PLLRDY, SW -> SWS, HSI48ON -> HSI48RDY (each unless the test turns it off).

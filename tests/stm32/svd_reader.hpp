@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A small, bounded reader of CMSIS-SVD files, enough for the register cross-check: peripherals
 // (name, baseAddress, derivedFrom), their registers (name, addressOffset) and the registers' bit
 // fields (name with bitOffset/bitWidth, bitRange [msb:lsb], or lsb/msb), and the device's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The analog front end (firmware/board/stm32g474/adc.hpp) on a host register file: the injected
 // trigger and channels, the conversion times, the pressure scan, the DMA set-up and the power-up
 // order are COMPUTED from the register values written (facts §4.4, §4.5 restated here) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board's calibration storage (stm_board.hpp write_calibration / idle / read_calibration)
 // on the flash model (flash_model.hpp, the part's rules): a commit runs over main-loop passes, each
 // starting at most one flash operation and never waiting for BSY, idle() does not sleep while it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board class (stm_board.hpp) around its tick, on a host register file: the IWDG
 // refresh rule, the bootloader request, the identity from the device UID, the link's transmit
 // wake-up, idle()'s sleep and the status LED (calibration storage: test_board_calibration.cpp;

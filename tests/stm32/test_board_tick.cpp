@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board class's control tick (stm_board.hpp) on a host register file: the rate the
 // registers make, the inputs one end-of-sequence interrupt delivers from known codes, the outputs
 // it writes, the tick's mask, missed ticks on the µs grid and the µs clock across its wrap.

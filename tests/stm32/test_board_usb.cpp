@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board's USB link (stm_board.hpp: Device<UsbFsdev<Io>>, the USB_LP interrupt, the
 // UID serial) on the FSDEV register model (fsdev_model.hpp), with tests/usb's host playing the
 // bus: the board enumerates, serves identity().serial as string 3, carries bulk bytes both ways,

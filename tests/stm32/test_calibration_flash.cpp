@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration in flash on the flash model (flash_model.hpp): the contract-3 store
 // (calibration_flash.hpp) over the journal (palp/fw/flash_journal.hpp) and the STM32 flash driver
 // (flash_driver.hpp) — slot placement and layout, register use, non-blocking polls, option-byte

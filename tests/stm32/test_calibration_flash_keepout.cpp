@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The flash a host-side firmware update must never erase (proto::board_calibration_flash, used by
 // palp::flash, palp/flash.hpp) is exactly where this board keeps its calibration journal
 // (flash_driver.hpp): one fact in two places, checked here.

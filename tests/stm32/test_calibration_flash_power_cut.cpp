@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Power cuts at every single step of a calibration commit (issue 21): from each starting state
 // (blank; A valid; A and B valid with B newest; with A newest), the power goes at each flash
 // operation (the erase, each of the 30 double-word programs) in each way it can end (not

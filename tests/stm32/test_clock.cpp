@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The clock init (firmware/board/stm32g474/clock.hpp) run on a host register file: the clocks
 // are COMPUTED from the register values it leaves (SYSCLK from source, M, N, R and the switch
 // status; HCLK from HPRE; the flash wait states the result needs in boost or normal mode; the

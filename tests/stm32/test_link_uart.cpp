@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The host link over LPUART1 (firmware/board/stm32g474/link_uart.hpp) on a host register file:
 // the baud rate is COMPUTED from the registers written (LPUART: baud = 256 x f_ck / BRR with
 // f_ck = the LPUART1SEL clock / PRESC, RM0440's formula restated here), the frame format read

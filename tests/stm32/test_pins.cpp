@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pin table (firmware/board/stm32g474/pins.hpp) on a host register file: after init, each
 // pin's mode, AF, pull and output type are COMPUTED back from MODER/AFRL/AFRH/PUPDR/OTYPER and
 // compared with the table, which is compared with the README's pin table; pins outside the table

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every register definition under firmware/board/stm32g474/regs checked against ST's SVD
 // (firmware/board/stm32g474/svd/STM32G474.svd.xz): base address, offset, each field's position
 // and width; and the check itself shown to catch wrong definitions with the exact mismatch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control-loop timers (firmware/board/stm32g474/timers.hpp) run on a host register file: the
 // PWM frequency, dead time, ADC trigger instant, encoder filter window and watchdog timeout are
 // COMPUTED from the register values written (with the facts sheet's formulas and tables, §4.2,

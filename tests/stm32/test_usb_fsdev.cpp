@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The FSDEV driver (firmware/board/stm32g474/usb_fsdev.hpp) against the peripheral model
 // (fsdev_model.hpp): init state, SETUP/OUT/IN packets through the PMA, NAK and STALL, the
 // rc_w0 and toggle bits never clobbered, the address, bus reset, suspend/resume, refusals.

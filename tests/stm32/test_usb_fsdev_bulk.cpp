@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bulk transfers of every size 0..4096 bytes through the FSDEV driver and the peripheral model,
 // OUT, IN and both at once on endpoint 1, split into 64-byte packets: every byte arrives, in
 // order, and the DATA0/DATA1 toggles alternate across all packets (the model's host counts every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The USB driver (usb_fsdev.hpp) on the peripheral model (fsdev_model.hpp), initialised,
 // attached and bus-reset as a host would leave it before its first SETUP; every test ends by
 // checking the model saw no access the real peripheral would refuse and no toggle mismatch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The peripheral model (fsdev_model.hpp) itself, driven by raw register writes and host packets
 // (no driver): the write semantics of stm32g474-facts.md §5.2 the driver tests rely on to catch
 // a read-modify-write, a flag written 1, a wrong PMA stride.

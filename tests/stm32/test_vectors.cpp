@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 vector table's interrupt list (firmware/board/stm32g474/vectors_list.hpp, from
 // which vectors.cpp builds the table) checked against the <interrupt> elements of ST's SVD:
 // every number and name equal, none missing, none extra; and the reader's interrupt parsing.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The vendored SVD (firmware/board/stm32g474/svd/STM32G474.svd.xz), read and parsed once per test
 // program; a read or parse failure fails the calling test with the reader's error.
 #pragma once

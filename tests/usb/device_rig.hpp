@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A Device over a bus's hardware with its host (host.hpp), and the steps most tests start from:
 // attach, enumerate to the Configured state at address 5. Bus is PacketBus (packet_bus.hpp, the
 // contract at the packet level) or FsdevBus (fsdev_bus.hpp, the FSDEV driver on the register

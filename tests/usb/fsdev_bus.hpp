@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device core on the STM32G474's FSDEV driver (firmware/board/stm32g474/usb_fsdev.hpp) over
 // the register-level model of the peripheral (tests/stm32/fsdev_model.hpp): the
 // same host calls and observations as PacketBus (packet_bus.hpp), answered by the model's

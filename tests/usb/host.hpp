@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The host's side of the device core's tests: control transfers, bulk and interrupt packets
 // played on a bus (packet_bus.hpp's stand-in, or fsdev_bus.hpp's FSDEV model) the way a host
 // controller does, running the device's service() (its USB interrupt) after every bus event. A transfer records every data packet's

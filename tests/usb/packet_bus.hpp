@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A UsbHardware (contract 1, firmware/usb/include/palp/usb/hardware.hpp) for the device core's
 // tests that plays the bus at the packet level, with the host's side as calls: a SETUP, an IN
 // token, an OUT packet, a bus reset, suspend/resume. Each endpoint answers as the contract says

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The independent decoder catches what it is there to catch: each test breaks one field of a
 // copy of the firmware's descriptors (offsets from the facts sheet's tables) and checks that the
 // decoder throws, or that the placement check reports the broken placement. Without these the

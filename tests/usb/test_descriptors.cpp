@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The firmware's USB descriptors (firmware/usb, descriptors.hpp) read back by the independent
 // decoder (usb_decoder.hpp, written from the facts sheet) and compared with known answers: the
 // identity and layout of protocol/include/palp/protocol/usb.hpp and the values SPEC.md §3.1 states.

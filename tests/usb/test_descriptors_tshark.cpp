@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The firmware's standard descriptors decoded by a second, outside reader: Debian's tshark
 // (Wireshark's USB dissector) reads a synthesised usbmon capture of the enumeration (the requests
 // a Linux host makes, answered by find_descriptor) and the test compares the fields it prints

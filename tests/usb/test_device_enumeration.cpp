@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device core's control endpoint (firmware/usb/device.hpp) against a host playing the bus
 // (host.hpp, packet_bus.hpp): enumeration as Windows does it (usb-dfu-facts.md §1.10), the ZLP
 // rule (§1.11), STALL and its recovery, SET_ADDRESS after the status stage, the standard, HID

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device core's hardware-free rules (requests.hpp, byte_ring.hpp), with known answers.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device core's stream pipes (firmware/usb/device.hpp "The stream"): bulk transfers of
 // every size 0..4096 both ways with the ZLP rule of palp/protocol/usb.hpp, real frames encoded
 // by the protocol library and read back by its frame reader (the SDK's) on the other end, over

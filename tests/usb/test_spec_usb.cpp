@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // protocol/SPEC.md §3.1 states what the device serves: the HID report descriptor's bytes, the
 // MS OS 2.0 vendor code and the DeviceInterfaceGUID there are the firmware's (a change to either
 // side without the other fails here).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // host/udev/70-palp.rules against protocol/include/palp/protocol/usb.hpp (one definition of the
 // identities): the rules name exactly the controller (its USB node and its hidraw node) and the
 // STM32 ROM bootloader, each with TAG+="uaccess", and no GROUP (plugdev is missing on Fedora and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The independent descriptor decoder (usb_decoder.hpp). Offsets and codes from
 // ../shared/reference/usb-dfu-facts.md, section named at each; all fields little-endian (sheet
 // preamble).

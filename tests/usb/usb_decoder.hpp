@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An independent decoder of USB descriptors, written from the tables of
 // ../shared/reference/usb-dfu-facts.md (chapter 9 §1.4-§1.8, HID §2.1/§2.3, BOS §3, MS OS 2.0 §4),
 // NOT from the firmware's builders: every offset, size and type code here is re-derived from the

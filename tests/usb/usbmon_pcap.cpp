@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The usbmon pcap writer (usbmon_pcap.hpp).
 #include "usbmon_pcap.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A synthesised usbmon capture: control transfers as a Linux host's usbmon records them, written
 // as a classic pcap file of link type LINKTYPE_USB_LINUX_MMAPPED (220), for tshark to decode
 // (this machine has no USB subsystem to capture from).

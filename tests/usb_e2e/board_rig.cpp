@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The board behind the bus (board_rig.hpp).
 #include "board_rig.hpp"
 

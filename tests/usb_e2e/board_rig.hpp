@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe controller behind a full-speed USB bus, for the SDK's usb:// and hid:// transports
 // end to end (tests/usb_e2e: rig_apis.hpp plays libusb and hidapi over it). The device side is
 // the firmware as the STM32G474 runs it, minus the silicon:

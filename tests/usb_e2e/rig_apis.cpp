@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libusb and hidapi over the rig's bus (rig_apis.hpp).
 #include "rig_apis.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libusb and hidapi as the SDK calls them (its own seams, host/src/transport/usb_api.hpp and
 // hid_api.hpp, interfaces unchanged), answered by the board on the rig's bus (board_rig.hpp):
 // the SDK's usb:// and hid:// transports and its discovery run unmodified against the device

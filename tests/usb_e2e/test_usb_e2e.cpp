@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's usb:// and hid:// transports and its discovery, unmodified, against the device stack
 // and the firmware core on the rig's bus (board_rig.hpp, rig_apis.hpp): what the issue asks,
 // "the SDK's transports talk to the board as they are". Each test builds its own board; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The image's metadata block (protocol/include/palp/protocol/image_metadata.hpp), placed in
 // section .palp_metadata, which the board's linker script puts at kImageMetadataOffset. Built
 // into an image by palp_image_metadata() (firmware/CMakeLists.txt), which names the board

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe-controller firmware's one main(): the app (app.hpp) over the board this image is
 // built for (the board directory's app_board.hpp names it: TargetBoard). Startup (the board's
 // reset handler) has set up memory and the FPU.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Cortex-M core operations a board needs besides memory-mapped registers: PRIMASK (mask and
 // restore every interrupt), WFI, and the DSB/ISB barriers; as a policy class, so a board written
 // as a template (the STM32G474's StmBoardT) runs on the host with a fake that records the calls.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Cortex-M4 NVIC registers both boards use (QEMU's mps2-an386 and the STM32G474 are ARMv7-M
 // cores, so one definition serves both): enabling, masking, pending and prioritising single
 // external interrupts (the tick guard masks only the control tick's interrupt).

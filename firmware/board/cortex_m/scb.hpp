@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Cortex-M4 System Control Block registers the boards' startup code uses (QEMU's mps2-an386 and
 // the STM32G474 alike: both are ARMv7-M cores, so one definition serves both).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The QEMU mps2-an386 board as test images see it: a text console (CMSDK UART0), an exit code
 // for the host (semihosting) and the stack's high-water mark. Startup (startup.cpp) has already
 // enabled the FPU, initialised memory, painted the stack and enabled the UART when main() runs.

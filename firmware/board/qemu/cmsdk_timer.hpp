@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CMSDK APB timers of QEMU's mps2-an386: the control tick (timer 0) and the free-running clock
 // (timer 1).
 //

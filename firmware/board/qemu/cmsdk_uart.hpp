@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CMSDK APB UART registers, the serial port of QEMU's mps2-an386.
 //
 // Sources:

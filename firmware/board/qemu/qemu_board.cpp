@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The QEMU mps2-an386 board (qemu_board.hpp): registers in cmsdk_uart.hpp, cmsdk_timer.hpp,
 // ../cortex_m/nvic.hpp, PRIMASK/WFI in ../cortex_m/cpu.hpp; the vector entries are startup.cpp's
 // weak palp_irq_* names, defined here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The QEMU mps2-an386 board behind the app's seam (firmware/app/include/palp/app/board.hpp):
 //
 //   link         CMSDK UART0 (a QEMU chardev, e.g. a TCP socket): received bytes by interrupt

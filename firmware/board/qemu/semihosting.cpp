@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Exit with a code through ARM semihosting, which QEMU turns into its own exit status.
 //
 // Source: ARM "Semihosting for AArch32 and AArch64" (ARM-software/abi-aa, semihosting.rst):

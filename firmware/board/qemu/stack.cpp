@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stack high-water mark: startup paints the free stack with a pattern; the deepest word that
 // no longer holds it marks the most stack ever used. The stack's bounds come from the linker
 // script (mps2_an386.ld).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Vector table and reset handler for QEMU's mps2-an386 (Cortex-M4F).
 //
 // Vector table layout: ARMv7-M Architecture Reference Manual (ARM DDI 0403E), B1.5.2-B1.5.3

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SysTick, the Cortex-M4's 24-bit down-counter, used to count instructions under QEMU.
 //
 // Sources:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The console: polled transmit on CMSDK UART0 (registers in cmsdk_uart.hpp).
 #include "board.hpp"
 #include "cmsdk_uart.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The analog front end on the target's memory-mapped registers, with the DMA's fixed buffer.
 #include "adc.hpp"
 

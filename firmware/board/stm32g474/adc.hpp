@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The analog front end of the STM32G474 board (README §2, §3, §5): ADC1's injected group takes
 // the coil current (PB1, ADC1_IN12) and then the bridge supply (PB12, ADC1_IN11) on TIM1 TRGO2, the
 // instant one timer clock before the PWM counter's top (timers.hpp); its end-of-sequence

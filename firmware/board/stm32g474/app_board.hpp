@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The board the firmware app (firmware/app/src/main.cpp) is built for in this image: the
 // STM32G474 probe controller (stm_board.hpp).
 #pragma once

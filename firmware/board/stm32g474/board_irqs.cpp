@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 board's interrupts that reach the board object: the control tick, ADC1's end of
 // the injected sequence (ADC1_2, IRQ 18, vectors_list.hpp), runs the app's tick (stm_board.hpp
 // on_tick_irq); USB_LP (IRQ 20) services the USB device (on_usb_irq). The strong definitions

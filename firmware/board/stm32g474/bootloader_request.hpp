@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Entering the ROM bootloader (stm32g474-facts.md §1.4, pattern 1 "flag + reset, jump early after
 // reset"): the board (stm_board.hpp, enter_bootloader) writes a 64-bit request into RAM and asks
 // for a system reset (AIRCR.SYSRESETREQ, board/cortex_m/scb.hpp); the reset handler

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Budgets of palp-stm32-bringup.elf in bytes, enforced after its link (firmware/CMakeLists.txt)
 # and by ctest (tests/firmware): flash 8 KiB; RAM 17 KiB, i.e. the 16 KiB stack + 1 KiB; CCM SRAM
 # 1 KiB. The reset handler's and the default handler's frames: at most 32 B each.

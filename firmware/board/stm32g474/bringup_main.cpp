@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-stm32-bringup.elf: the first image a lab flashes to see an STM32G474 board alive. The
 // reset handler (startup.cpp) has already set the clocks; main() only blinks the status LED
 // (PA5, NUCLEO LD2; README pin table): slowly when the clock init succeeded, about four times

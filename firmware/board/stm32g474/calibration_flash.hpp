@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration storage in flash (team contract 3; NOTES.md "Calibration in flash"): the core's
 // calibration block in an A/B journal (palp/fw/flash_journal.hpp) on the last two pages of bank 2
 // (flash_driver.hpp: slot A 0x0807_F000, slot B 0x0807_F800), never in the image's pages.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The clock init on the target's memory-mapped registers.
 #include "clock.hpp"
 

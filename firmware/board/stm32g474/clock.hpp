@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Clock init of the STM32G474 board: SYSCLK 170 MHz from HSI16 through the PLL in Range-1 boost
 // mode, and a 48 MHz USB clock from HSI48 trimmed by the CRS to the host's SOF (no crystal).
 // Written against the register-access seam (regs/register.hpp), so tests/stm32 runs it on a host

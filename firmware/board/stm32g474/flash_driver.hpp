@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 flash driver for calibration storage: a fw::JournalFlash
 // (palp/fw/flash_journal.hpp) over the register seam, confined to the last two 2 KB pages of bank 2
 // (NOTES.md "Calibration in flash"). Register facts: stm32g474-facts.md §1.1 (bank 2 at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The board's NMI handler: a flash double ECC error raised by a calibration read is recorded and
 // returned from (flash_driver.hpp, handle_ecc_nmi: why that is safe); any other NMI is fatal and
 // goes to the default handler (vectors.cpp), as before this file existed. Defining the board's

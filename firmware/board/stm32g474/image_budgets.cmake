@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Budgets of palp-probe-controller.elf in bytes, enforced after its link (firmware/CMakeLists.txt)
 # and by ctest (tests/firmware), over what the image measured with the USB device and the flash
 # journal (NOTES.md, "Board class": flash 88468 B, RAM 77336 B with the 16 KiB stack, CCM

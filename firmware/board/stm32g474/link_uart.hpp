@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The host link of the STM32G474 board until USB exists: LPUART1 to the NUCLEO's ST-LINK virtual
 // COM port (PA2 TX / PA3 RX, AF12; the host opens `serial:///dev/ttyACM0?baud=921600`).
 // Written against the register seam (regs/register.hpp) like clock.hpp, so tests/stm32 runs it on

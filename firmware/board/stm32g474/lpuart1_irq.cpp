@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The target's host link object and its interrupt handler (link_uart.hpp). The handler replaces
 // vectors.cpp's weak default of the same name (vectors_list.hpp: IRQ 91 `LPUART`).
 #include "link_uart.hpp"

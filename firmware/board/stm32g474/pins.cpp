@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pin table applied to the target's memory-mapped GPIO registers.
 #include "pins.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pin table of the STM32G474 board: README §3 ("The pin table"), the binding contract, as ONE
 // constexpr table, and the init that configures every pin from it (clocks of GPIOA/B/C, then per
 // pin MODER, OTYPER, OSPEEDR, PUPDR and AFRL/AFRH). Pins not in the table (SWD PA13/PA14, the

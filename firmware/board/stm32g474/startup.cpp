@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reset handler for the STM32G474 (Cortex-M4F): FPU, VTOR, memory set-up, constructors, clocks,
 // then main(). The vector table is vectors.cpp's; the symbols are stm32g474.ld's.
 //

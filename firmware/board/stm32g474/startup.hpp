@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the STM32G474 reset handler (startup.cpp) leaves for the application to read.
 #pragma once
 

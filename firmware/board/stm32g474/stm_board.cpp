@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The target's StmBoard (stm_board.hpp): StmBoardT on the memory-mapped registers and the core.
 #include "stm_board.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 probe controller as the app's Board (firmware/app/include/palp/app/board.hpp): the
 // drivers of this directory (clock.hpp at reset, pins.hpp, timers.hpp, adc.hpp, link_uart.hpp,
 // usb_fsdev.hpp with firmware/usb's Device, calibration_flash.hpp) wired to the seam. A template

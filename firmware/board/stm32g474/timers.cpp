@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control-loop timers on the target's memory-mapped registers.
 #include "timers.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control-loop timers of the STM32G474 board, written against the register-access seam
 // (regs/register.hpp) so tests/stm32 runs them on a host register file:
 // - TIM1: centre-aligned complementary PWM on CH1/CH1N (leg A: PA8/PB13) and CH2/CH2N (leg B:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474's USB full-speed device peripheral (FSDEV) as a palp::usb::UsbHardware
 // (firmware/usb/include/palp/usb/hardware.hpp, contract 1 of the issue-20 team): endpoint
 // registers, packet memory (PMA), bus events. Header-only over the register seam so the same code

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474 vector table, in .isr_vector at the start of flash (stm32g474.ld).
 //
 // Layout: ARMv7-M Architecture Reference Manual (ARM DDI 0403E), B1.5.2-B1.5.3: word 0 the initial

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The STM32G474's external interrupts, IRQ number and name, as ST's SVD lists them
 // (svd/STM32G474.svd.xz, <interrupt><name>/<value>; facts §2: "16 system entries + IRQs 0..101").
 // IRQ 85 is absent from the SVD (reserved): its vector stays empty. The one definition of the

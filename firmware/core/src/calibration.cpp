@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "palp/fw/calibration.hpp"
 
 #include "palp/protocol/crc32.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controller: the control tick, the main-loop service and the transmit path. Command dispatch is
 // in controller_dispatch.cpp.
 #include "palp/fw/controller.hpp"

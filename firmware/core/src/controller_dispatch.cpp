@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controller: the host's requests. Every request is answered with its catalogue reply, Ack or
 // Nak (SPEC.md §6.2). Until a compatible Hello only the frozen requests are served; every valid
 // request of an open session feeds the heartbeat watchdog. When several refusals apply, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "palp/fw/current_loop.hpp"
 
 #include <cmath>

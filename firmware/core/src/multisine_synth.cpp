@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The multisine generator (multisine_synth.hpp).
 #include "palp/fw/multisine_synth.hpp"
 

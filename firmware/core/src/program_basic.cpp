@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hold, contact watch and sine (program_kinds.hpp).
 #include "palp/fw/program_kinds.hpp"
 #include "palp/fw/waveform.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The periodic multisine program (program_kinds.hpp, multisine_synth.hpp).
 #include "palp/fw/program_kinds.hpp"
 #include "palp/protocol/multisine.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The staircase ramp (program_kinds.hpp, program_schedule.hpp).
 #include "palp/fw/program_kinds.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ProgramRunner (programs.hpp): validation, the program life cycle and the per-tick dispatch.
 #include "palp/fw/programs.hpp"
 

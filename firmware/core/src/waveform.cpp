@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sine table, computed by the compiler (no libm, no start-up cost).
 #include "palp/fw/waveform.hpp"
 

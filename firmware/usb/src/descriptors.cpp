@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The descriptors (descriptors.hpp), built at compile time by a small byte writer whose size is
 // computed from the layout and checked against what was written. Field layouts and values cite
 // ../shared/reference/usb-dfu-facts.md ("facts §n"); every multi-byte field is little-endian.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Elastic sphere laws: Hertz, exact Sneddon sphere, Dimitriadis bottom effect, series spring.
 #include <algorithm>
 #include <cmath>

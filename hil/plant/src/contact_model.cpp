@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactModel: the per-step contact force (elastic + Kelvin-Voigt + optional relaxation).
 #include <algorithm>
 #include <cmath>

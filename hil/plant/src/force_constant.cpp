@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The K_f(s) table: default points and piecewise-linear lookup.
 #include "palp/plant/force_constant.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The phantom files' key = value parser (see key_value_file.hpp).
 #include "key_value_file.hpp"
 

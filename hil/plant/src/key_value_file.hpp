@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // KeyValueFile: the small parser under the phantom files. Lines are "key = value  # comment";
 // values are a word, a number or a comma-separated list of numbers. Every error is a
 // PhantomError with a one-line message "source:line: problem". Private to palp_plant.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LinePhantom: the 1D objects, per-position contact laws interpolated along x.
 #include "palp/plant/line_phantom.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Small-signal linearisation about the static equilibrium at a bias current.
 #include "palp/plant/linearisation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Counter-based Gaussian noise: a splitmix64 hash of (stream key, tick) through a 256-layer
 // ziggurat (README.md "Noise").
 #include "palp/plant/noise.hpp"

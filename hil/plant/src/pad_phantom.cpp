@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PadPhantom: the 2D pad with a wavy top, channels under columns and rows, Boyle pressures.
 #include "palp/plant/pad_phantom.hpp"
 

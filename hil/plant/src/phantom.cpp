@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Phantom base class, and loading phantom files (kind dispatch, file reading).
 #include "palp/plant/phantom.hpp"
 

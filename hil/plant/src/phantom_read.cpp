@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Key lists and value ranges of the line_1d and pad_2d phantom files.
 #include "phantom_read.hpp"
 

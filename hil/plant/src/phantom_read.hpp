@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading the two phantom kinds from a parsed file (keys: README.md "Phantom files").
 // Private to palp_plant.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plant: coil electrics, moving-coil mechanics, end stops, contact and sensors, one tick a step.
 #include "palp/plant/plant.hpp"
 

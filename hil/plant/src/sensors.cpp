@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ADC transfer functions of the pressure sensors and the current-sense chain.
 #include "palp/plant/sensors.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Sneddon sphere from a table (contact.hpp, README.md "Speed and sameness").
 //
 // In d = delta / R the law is F = E* R^2 S(d) and dF/d(delta) = 2 E* R u(d), u = a / R solving

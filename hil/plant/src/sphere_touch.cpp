@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // sphere_touch: where a spherical tip lowered along +z first touches a phantom's surface.
 #include <algorithm>
 #include <array>

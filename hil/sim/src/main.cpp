@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim: the probe controller's firmware core and the physical model in virtual time, served
 // over a loopback socket with the device protocol, plus a control channel for the simulator's
 // own knobs, and with --robot-port the KUKA robot bridge (Modbus TCP) carrying the probe

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "palp/sim/plant_link.hpp"
 
 namespace palp::sim {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim-demo: the main job as far as it exists today (scripts/demo). It starts palp-sim, talks
 // to it over its loopback socket exactly as a host talks to a controller, and runs the paper's 1D
 // quasi-static indentation (§IV-A) at position 3 of the hollow, solid and insert objects: the

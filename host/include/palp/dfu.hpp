@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DfuSe client: updates a device in ST's ROM DFU bootloader (0483:df11) over libusb, through
 // the SDK's UsbApi seam (host/src/transport/usb_api.hpp). usb-dfu-facts.md §5 is the protocol;
 // host/src/dfu/README.md lists what the client does, request by request.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Discovery: every palp controller on this machine's USB, with its serial number, firmware
 // version and the transports that reach it. None found is an empty list, never an error.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's errors: one small hierarchy, every message written for the person who reads it.
 //
 //   palp::Error                  base of everything the SDK throws

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Updating a probe controller's firmware (issue 21): what `palpctl flash IMAGE` does, as a call a
 // lab's own tooling can make.
 //

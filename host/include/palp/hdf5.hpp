@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recordings, result directories, maps and identifications as HDF5 files (issue 22): one
 // self-describing binary file a lab opens in Python (h5py), MATLAB (h5read) or HDFView without
 // palp. The layout, for people and other programs, is docs/hdf5-format.md; this header is the

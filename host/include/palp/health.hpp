@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Health counters: every buffering stage between the control tick and the application, so a
 // lost sample always has a named place where it was lost (DESIGN.md, protocol principles).
 #pragma once

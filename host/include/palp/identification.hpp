@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Dynamic identification (issue 7; paper §III-A, §III-C, §IV-B): the probe's frequency response
 // in free air or in contact, by the paper's stepped sine or by a periodic multisine that takes a
 // tenth of the time, and the force-constant calibration.

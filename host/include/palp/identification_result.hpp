@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What an identification gives, in lab units with the unit in every key (issue 7): the summary
 // `palpctl sweep|freeair|analyze sweep --json` prints and result.json holds, the frequency
 // response as a table `palpctl analyze sweep` reads back, and the result directory.

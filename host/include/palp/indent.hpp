@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Experiments (issue 6): what a lab program runs at one probe position and gets a result from.
 //
 //   palp::Probe probe("sim://127.0.0.1:7070");

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's log: what it recovers from on its own, reported instead of kept silent.
 //
 // The SDK keeps a session going through link trouble: a request whose reply was lost goes out

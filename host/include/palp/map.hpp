@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stiffness mapping (issue 6; the paper's §V): for each point of a plan, touch the surface with a
 // guarded approach (trace.hpp), indent it with the quasi-static staircase (indent.hpp),
 // retract, move on; then the stiffness map, the surface it was measured on, and the soft and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Pose: a tool-centre-point pose as a KUKA controller gives it, in SI: x, y, z in the
 // robot's base frame (m), then A, B, C, the ZYX Euler angles in rad (A about z, B about the new y,
 // C about the newest x). Its own header so the analysis (surface.hpp) uses poses without the

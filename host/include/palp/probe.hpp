@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe client: one connection to one probe controller (hardware or palp-sim).
 //
 //   palp::Probe probe("sim://127.0.0.1:7070");          // connects and runs the handshake

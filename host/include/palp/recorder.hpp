@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recorder: stream a probe into a recording (run.csv + run.json, recording.hpp,
 // docs/recording-format.md), optionally while a device program runs. It writes exactly the
 // files `palpctl stream` and `palpctl run` write (palpctl calls it): every sample, every gap

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recordings: streamed probe samples as a CSV with a JSON sidecar of the same name
 // (`run.csv` + `run.json`). The format, for people and for other programs, is
 // docs/recording-format.md; this header is the SDK's side of it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recording in memory: its columns, one row, the sidecar's metadata and a whole recording,
 // in the recording's lab units (s, A, mm, Pa). The analysis takes these (palp::analysis links no
 // file, device or robot code); reading and writing the files is recording.hpp's, in the

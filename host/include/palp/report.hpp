@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reports (issue 22): every palp result as figures people read, the paper's way: force–depth
 // curves with their fits, the stiffness heat map, Bode plots with the second-order fit, pressure
 // against force. A report is a list of sections, each with Vega figures and tables; it is written

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Result directories (issue 6): every experiment writes one directory, atomically, that holds
 // everything needed to understand and re-analyse it. The layout, for people and other programs,
 // is docs/result-format.md:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The rig and the plan (issue 5): what is bolted together (rig.json) and what to trace
 // (plan.json). Schemas, units and complete examples: docs/rig-and-plan.md.
 //

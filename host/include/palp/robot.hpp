@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Robot: the arm that carries the probe, reached through a robot bridge.
 //
 // The interface is what an experiment needs from an arm (move, guarded approach, stop, pose,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming: samples in order, with their index and device time, and every loss as an explicit
 // gap record. Nothing is ever filled in or repeated.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tidy CSV of a map or a result directory (issue 22): one table, one row per point and
 // repetition, that pandas.read_csv(f) or MATLAB readtable(f) read in one line. The columns, units
 // and rules are docs/result-format.md "The tidy CSV"; `palpctl export --format csv` writes it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface tracing: the arm carries the probe over a plan's grid and, at every point, finds the
 // zero-force contact point with a guarded approach (the paper's procedure: advance slowly along
 // the probe axis until the coil has moved 0.2 mm, stop, record the 3D contact position), then the

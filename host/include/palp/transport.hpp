@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Transports: the byte stream of frames to and from one controller (protocol/SPEC.md §3),
 // behind one small interface, chosen by URI:
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The in-process simulator (palp/sim_inproc.hpp): an Instrument behind a Transport whose read()
 // runs virtual time.
 #include "palp/sim_inproc.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Initial contact-point estimates: see estimate_contact in palp/analysis/indentation.hpp.
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact laws: see palp/analysis/contact_models.hpp.
 #include "palp/analysis/contact_models.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // From a fitted second-order model to the paper's quantities and the contact moduli (see
 // dynamics.hpp).
 #include "palp/analysis/dynamics.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frequency-response sources' shared checks and helpers (frf_internal.hpp).
 #include "frf_internal.hpp"
 

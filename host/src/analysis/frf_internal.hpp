@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared by the frequency-response and K_f-calibration sources (private): a recording checked
 // and placed on the device's control-tick grid, the program start from the commanded current,
 // exact tone phases, and the force constant.

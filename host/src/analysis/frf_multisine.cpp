@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The periodic multisine's frequency response and distortion (frequency_response.hpp): the
 // program's start from the commanded current's line phases, whole periods cut on the control
 // tick, exact DFT bins per period, averages and period-to-period scatter.

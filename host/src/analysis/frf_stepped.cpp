@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stepped sine's frequency response (frequency_response.hpp): the program's start from the
 // commanded current on the first line, each line's measured cycles cut from the device's
 // schedule (program_schedule.hpp), and a least-squares sinusoid per line.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frequency-response tables: the two CSV layouts with an optional sigma column (see
 // frf_table.hpp). Every refusal is a RecordingError naming the file, the line and the problem.
 #include "palp/analysis/frf_table.hpp"

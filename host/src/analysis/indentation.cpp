@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Branches, descriptors and the whole quasi-static analysis: see palp/analysis/indentation.hpp.
 #include "palp/analysis/indentation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Model fits with the contact point as a parameter: see palp/analysis/indentation.hpp.
 //
 // Start: a profile over z_c on a grid (for each candidate z_c the model is linear in its

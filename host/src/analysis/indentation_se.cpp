@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Delta-method standard errors of delta0 and the tangent stiffnesses (indentation.hpp).
 #include <algorithm>
 #include <cmath>

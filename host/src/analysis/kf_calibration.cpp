@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Force-constant calibration in free air (kf_calibration.hpp): static points cut from the
 // staircase with the ramp's exact schedule, and the linear least-squares fit of the absolute
 // balance K_f(s) i - c = k_v s with K_f piecewise linear over nodes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bounded Levenberg-Marquardt: see least_squares.hpp.
 #include "analysis/least_squares.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A small bounded Levenberg-Marquardt over Eigen (private to the analysis).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A number in error messages and notes: six significant digits, as std::ostream prints it
 // (private to the analysis).
 #pragma once

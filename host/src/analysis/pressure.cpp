@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pressure against force, hysteresis and Boyle's law: see palp/analysis/pressure.hpp.
 #include "palp/analysis/pressure.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Repetitions of a recording without a rep column: split at the current's minima, with a
 // Schmitt trigger so noise cannot split (the rule is documented in recording_types.hpp).
 #include <algorithm>

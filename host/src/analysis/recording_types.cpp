@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recording in memory: its columns and append() (recording_types.hpp).
 #include "palp/recording_types.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-repetition analysis and hysteresis: see palp/analysis/indentation.hpp.
 #include <cmath>
 #include <vector>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The second-order fit: linear start on D = 1/G, Sanathanan-Koerner, weighted LM in
 // log-parameters (see second_order.hpp).
 #include "palp/analysis/second_order.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface analysis: touch-off registration, zero-force contact points, grid normals and tilts.
 #include "palp/analysis/surface.hpp"
 

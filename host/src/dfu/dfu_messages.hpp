@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to the DfuSe client: text helpers shared by its files.
 #pragma once
 

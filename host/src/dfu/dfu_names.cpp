@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The names of DFU states, status codes and progress phases (usb-dfu-facts.md §5.3), and what
 // each status means in a message (dfu_messages.hpp).
 #include <cstdio>

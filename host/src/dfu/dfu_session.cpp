@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DFU requests on one claimed interface (dfu_session.hpp; usb-dfu-facts.md §5.2-§5.6).
 #include "dfu/dfu_session.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to the DfuSe client: the DFU requests on one claimed interface (usb-dfu-facts.md
 // §5.2-§5.6), GETSTATUS polling that honours bwPollTimeout, recovery to dfuIDLE, and the
 // DfuseError for every failure. dfuse_device.cpp builds the public calls from these.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DfuseDevice (palp/dfu.hpp): finding and opening the ROM bootloader, and the erase / download /
 // upload / leave sequences of usb-dfu-facts.md §5.5-§5.6 over the requests of dfu_session.hpp.
 #include <algorithm>

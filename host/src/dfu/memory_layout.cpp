@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DfuSe memory-layout string (usb-dfu-facts.md §5.8):
 //   @<name>/0x<start>/<N>*<size><mult><type>[,<N>*<size><mult><type>...][/0x<start>/...]
 // mult: B (or a space) bytes, K x1024, M x1024^2; type letter: (letter & 7) bit 1 readable,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared by the experiments: see experiment_common.hpp.
 #include "experiment_common.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the experiments (indent(), identify(), calibrate_kf()) share: releasing the coil, recording
 // the samples a device program drives, and the sidecar's common part (device, calibration, stroke origin, stream).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The first check of every settings struct (IndentationSettings, IdentificationSettings,
 // KfCalibrationSettings, Rig, Plan): each number is finite, and the first that is not is named.
 // A range check alone lets NaN through (every comparison with it is false).

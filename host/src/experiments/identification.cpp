@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Dynamic identification (identification.hpp): float the coil, hold the bias, run the stepped
 // sine or the multisine while recording, analyse; and the re-analysis of a loaded recording.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Force-constant calibration in free air (identification.hpp): a slow staircase both ways, the
 // absolute balance fitted for K_f(stroke) (kf_calibration.hpp), the table written to the
 // device's calibration block.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Identification results in lab units (identification_result.hpp).
 #include "palp/identification_result.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // IdentificationSettings (identification.hpp): presets, checks, the device programs they give,
 // the excitation's peak and the free-air excursion it predicts.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The quasi-static indentation (indent.hpp): zero pressures, float the coil, stream the
 // device's staircase ramp into a recording, analyse it.
 #include <algorithm>

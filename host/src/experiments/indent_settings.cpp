@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // IndentationSettings (indent.hpp): presets, the device program, checks.
 #include <cmath>
 #include <string>

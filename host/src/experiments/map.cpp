@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // map_plan: touch, indent, retract at every point of a plan; map.json after every point.
 #include "palp/map.hpp"
 

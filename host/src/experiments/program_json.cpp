@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A device program's parameters as a sidecar's program.parameters holds them (result.hpp): one
 // field table per program, written and read.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The repetition of each sample of a staircase ramp (the recording's rep column), found from the
 // commanded current as the samples stream in: the device counts repetitions but does not stamp
 // them on samples. It follows firmware/core's schedule (SPEC.md, LoadRamp): with unload a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recorder (palp/recorder.hpp): zeroing, stream, optional program, every sample and gap into
 // a recording with its sidecar; every exit path stops what it started.
 #include "palp/recorder.hpp"

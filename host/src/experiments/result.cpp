@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Result directories (result.hpp): written into a hidden sibling directory, flushed, renamed
 // into place; read back with errors that name the file.
 #include <fstream>

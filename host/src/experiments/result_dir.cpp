@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The atomic result directory (result_dir.hpp).
 #include "result_dir.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The atomic result directory shared by every experiment's writer (result.hpp describes the
 // guarantee): files are written into a hidden sibling directory, flushed, and the directory is
 // renamed into place. Every result directory holds kManifestFile, the list of the files palp

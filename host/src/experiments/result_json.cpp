@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The lab-unit JSON of result.hpp: the analysed numbers with the keys, the parameters,
 // the experiment's settings.
 #include <algorithm>

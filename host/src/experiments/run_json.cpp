@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // result.json's "run" block (run_json.hpp).
 #include "run_json.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // result.json's "run" block (docs/result-format.md): how a run went, one field table per
 // experiment that the writer and the reader share (format/field_table.hpp).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sidecar's description of the setup (result.hpp): the device block (one field table, written
 // and read), the calibration and zeroing blocks, and the sidecar's common part the experiments and
 // palpctl's recordings share.

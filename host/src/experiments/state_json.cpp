@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device's state in lab units as JSON (result.hpp: params_json, health_json, fault_json,
 // program_result_json): one definition for the recorder's sidecar and palpctl's --json.
 #include <string>

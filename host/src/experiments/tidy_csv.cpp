@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tidy CSV of a map or a result directory (tidy_csv.hpp; docs/result-format.md "The tidy CSV").
 #include "palp/tidy_csv.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The guarded-approach touch (trace.hpp): search, back off, settle, slow approach, read at rest.
 #include "toucher.hpp"
 

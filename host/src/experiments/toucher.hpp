@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The guarded-approach touch shared by trace_surface and touch_off (trace.hpp has the sequence).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // trace_surface and touch_off: the guarded-approach sequence of trace.hpp over a grid.
 #include "palp/trace.hpp"
 

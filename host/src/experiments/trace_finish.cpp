@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // finish_surface: the contact points, normals and tilts of a traced surface from what was
 // measured at rest, with the surface analysis's functions (analysis/surface.hpp).
 #include <cmath>

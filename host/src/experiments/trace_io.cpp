@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Trace files: a TracedSurface as JSON in lab units (docs/rig-and-plan.md "Trace files").
 #include <cmath>
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Trace JSON (trace_io.cpp) for the other files that embed a traced surface (map.json).
 #pragma once
 

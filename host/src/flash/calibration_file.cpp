@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The kept calibration's file (calibration_file.hpp).
 #include "flash/calibration_file.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calibration a firmware update keeps, as a file (palp/flash.hpp, step 3): the device's
 // Calibration message byte for byte (hex) and in lab units, marked as palp's so a later update
 // may replace it, and nothing else is ever overwritten.

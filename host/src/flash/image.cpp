@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading and checking a firmware image before anything is flashed (palp/flash.hpp, step 1), the
 // board check against a device (step 2) and the recovery text.
 #include <filesystem>

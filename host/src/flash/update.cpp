@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::flash::update (palp/flash.hpp): the steps of a firmware update, each said before it is
 // done; with dry_run said and not done.
 #include <thread>

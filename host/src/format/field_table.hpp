@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Field tables: a file format's keys defined once. Each entry names a key, the struct member it
 // holds, the scale from the member's SI unit to the file's lab unit, whether a file must have it
 // and, for numbers, the range a reader accepts. The writer (write_fields) and the reader

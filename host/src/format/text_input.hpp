@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bounded reading of the text files palp reads (recordings, frequency-response tables, sidecars,
 // result, trace, rig and plan JSON), and the one way an error message quotes their contents.
 //

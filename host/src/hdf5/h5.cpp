@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HDF5 C API behind palp/hdf5.hpp (h5.hpp).
 #include "hdf5/h5.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HDF5 C API behind palp/hdf5.hpp (not installed): handles that close themselves, typed
 // attributes and columns, and palp's atomic file. Every failure is an exception naming the file
 // and the object (RecordingError), never HDF5's error stack on stderr.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An identification result directory (sweep, free air) as one HDF5 file (docs/hdf5-format.md
 // "An identification file"): the result's group and the measured response as typed columns.
 #include <string>

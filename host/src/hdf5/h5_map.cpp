@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A map directory as one HDF5 file (docs/hdf5-format.md "A map file"): map.json as text, the
 // map's settings and analysis typed, a result's group per point.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A recording as an HDF5 group (docs/hdf5-format.md "A recording's group"), and the recording
 // file of palp/hdf5.hpp.
 #include "hdf5/h5_recording.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A recording as a group of an HDF5 file (docs/hdf5-format.md "A recording's group"): shared by
 // the recording file and the result file (not installed).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A result directory as an HDF5 group and as one file (docs/hdf5-format.md "A result file"):
 // result.json as text and its analysed numbers as typed attributes, every recording as a group,
 // the repetitions of an indentation as groups.

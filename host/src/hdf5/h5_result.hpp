@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A result directory as an HDF5 group (docs/hdf5-format.md "A result's group"): shared by the
 // result file, each point of a map file and the identification file (not installed).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Device time to host time from Ping round trips. Each round trip gives one point: the device's
 // time when it handled the Ping against the host's mid-point of send and receive, uncertain by
 // half the round trip. The fit is a least-squares line over the recent points whose round trip

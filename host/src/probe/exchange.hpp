@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One request and its reply over a bare transport, outside any session: the handshake's Hello
 // (session.cpp) and the frozen requests a firmware update makes before or without a session
 // (GetDeviceInfo, EnterBootloader: SPEC.md §6.1; flash/update.cpp).

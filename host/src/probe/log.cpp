@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's log handler (palp/log.hpp) and the internal call that reports through it.
 #include "probe/log.hpp"
 

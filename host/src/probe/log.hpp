@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's side of palp/log.hpp: report a line through the program's handler, if any.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Probe: the public API over a Session.
 #include "palp/probe.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calibration helpers: current-sense offset, pressure zero, homing. They change the
 // calibration in RAM only (a recording's sidecar keeps what they did); `palpctl calibrate`
 // commits to flash on request.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Probe's private state (probe.cpp, probe_helpers.cpp).
 #pragma once
 

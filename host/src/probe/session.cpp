@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe session: handshake, I/O thread, replies, events, heartbeat, clock fit, reconnect.
 #include "probe/session.hpp"
 

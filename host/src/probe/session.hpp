@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One connection to one controller: the transport, the handshake, the I/O thread, the request
 // that is waiting for its reply, events, the stream, the heartbeat, the clock fit and reconnect.
 // probe.cpp puts the public API on top of it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Session's templates (included by session.hpp).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Turns SampleBatch and EventStreamGap messages into the ordered stream the application sees:
 // samples with 64-bit indices and SI values, and one Gap record for every run of missing
 // indices, attributed to the device stage that reported it or, when no device event covers it,

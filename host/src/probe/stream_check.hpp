@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checks a stream request against the device and the transport before anything is sent, and
 // turns it into the StreamConfigure the device gets (probe.hpp, configure_stream).
 #pragma once

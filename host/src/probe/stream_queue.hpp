@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bounded queue between the probe's I/O thread and the application (probe.hpp describes the
 // back-pressure policy): samples beyond the capacity are dropped and become one host_queue Gap,
 // delivered in order as soon as there is room; gap records are never dropped.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // read_recording: the CSV in 1 MiB chunks, line by line (each at most format::kMaxLineBytes),
 // each cell parsed where it lies (std::from_chars, no copies), every refusal with the file, the
 // line and the problem; then the sidecar, checked against the CSV it claims to describe.

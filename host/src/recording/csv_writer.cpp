@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RecordingWriter: rows into a hidden temporary CSV through a 1 MiB buffer, the sidecar into a
 // temporary JSON, both fsync'ed, then renamed sidecar first and CSV last (the CSV's rename is the
 // commit point; recording.hpp explains why this order).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared by the recording sources (not installed): number text, the CSV's CRC-32, the sidecar
 // document in its written key order.
 #pragma once

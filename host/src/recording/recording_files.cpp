@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recording files: their names beside each other, and write_recording() (recording.hpp).
 #include "palp/recording.hpp"
 

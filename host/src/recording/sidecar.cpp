@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sidecar (run.json): written in the documented key order, read back with every unknown key
 // kept, and refused with a message that names the key when a known key has the wrong type.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The points a report's force–depth and pressure–force figures draw from a recording: one per
 // staircase plateau (the mean of its samples), so that a 1 kHz ramp of thousands of samples
 // becomes a few hundred points per repetition and the embedded data stay small.

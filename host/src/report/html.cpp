@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The self-contained HTML page of a report: header, contents, sections with their figures (Vega
 // specs embedded as JSON, drawn as SVG in the browser by the inlined Vega modules) and tables.
 // Written atomically; an existing file is replaced only when palp wrote it.

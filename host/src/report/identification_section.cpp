@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The identification section (sections.hpp), the paper's Fig. 4(d): Bode magnitude and phase of
 // the measured response (frf.csv beside result.json) with each line's σ as error bars and the
 // fitted second-order model G = 1 / (k − m ω² + j b ω) from result.json's analysis (m_kg,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The indentation section (sections.hpp): the run rebuilt from its result directory and analysed
 // again (indentation_run_of), drawn as the paper's Fig. 4(a) and 6(a):
 //   indentation-force-depth  F_o–δ of every repetition (plateau means, load and unload), the

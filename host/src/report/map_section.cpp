@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The map's section: the k_fd heat map on the grid (rows down, columns across, as the paper's
 // Fig. 6b) with its colour bar and the soft and stiff lines outlined, and beside it the F_o–δ
 // curves of one point, the one clicked (a Vega signal; every point's curves are embedded, as

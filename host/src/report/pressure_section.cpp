@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pressure section (sections.hpp), the paper's Fig. 5(c): each recorded channel's pressure
 // against the object force F_o (the staircase's plateau means, loading and unloading) with its
 // regression line over the loading branch and R², and a table of the slopes, the rises and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // make_report: what the input is (a map, a result directory by its experiment, a trace) chooses
 // the section builders (sections.hpp); the header comes from result.json, its sidecar and
 // map.json.

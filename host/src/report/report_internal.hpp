@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp_report's internal pieces shared by its files (not installed): the inlined Vega modules,
 // the header lines of a result, number text for people.
 #pragma once

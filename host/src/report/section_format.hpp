@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Numbers for people in the report's tables and labels (the figures' section builders): a
 // number to a few significant digits, and a result.json value (a number, or null with its
 // `<key>_reason`) as a table cell.

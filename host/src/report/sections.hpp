@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The report's sections, one builder per kind of result (palp/report.hpp's types). Internal to
 // palp_report: the public entry points (make_report, the HTML and SVG writers) choose the builders
 // by what the input is.

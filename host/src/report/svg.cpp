@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The report's figures as standalone SVG files: every spec is written to a temporary directory
 // and host/report/vega-to-svg.js renders them all in one node process (Debian's node-vega, no
 // browser) into the SVG directory, which is written as a result directory is (result_dir.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The trace section (sections.hpp): a traced surface as two heat maps on its grid, each with a
 // colour bar: the zero-force contact points' z (mm, work-object frame, +z into the specimen)
 // and the normals' tilts from the work object's z (degrees), with a tick in each cell pointing

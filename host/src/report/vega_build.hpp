@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Small builders for Vega 5 specifications (the report's figures, palp/report.hpp): a spec with
 // its size, data sets embedded as "values", linear/log scales over domains computed here, axes
 // whose titles carry units, line / symbol / band / rule / text / error-bar marks, a colour

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Vega runtime of the self-contained page, from Debian 12's libjs-vega. Its browser files are
 // one UMD file per module, and each, loaded as a plain script, replaces `window.vega` with its
 // own exports: loading several naively leaves only the last. Each file calls

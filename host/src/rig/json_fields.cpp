@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fields: checked access to the rig and plan files' JSON objects.
 #include "json_fields.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading the rig and plan files: one JSON object, keys checked one by one, every error one
 // line "file: key: problem" (syntax errors "file:line:column: problem").
 #pragma once

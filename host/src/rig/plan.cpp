@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plan.json: a grid (origin + pitch, or a region with n x m points) in a named work object.
 #include <cmath>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // rig.json: reading, writing (atomically) and the JSON form of palp::Rig.
 #include <cstdio>
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The libmodbus context behind ModbusLink.
 #include "robot/modbus_link.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One libmodbus TCP context to a robot bridge, used by one thread only (libmodbus contexts are not
 // thread-safe): connect/close, and whole blocks of the register map read (FC3) and written
 // (FC16, or FC6 for one host-control register). No floats; registers <-> blocks through

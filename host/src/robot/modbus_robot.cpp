@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ModbusRobot: the owner thread, the handshake rules of robot-bridge.md §8.1 and the link
 // failure handling of §9.1/§9.2.
 #include "robot/modbus_robot.hpp"

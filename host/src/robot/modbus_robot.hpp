@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Robot over Modbus TCP (protocol/robot-bridge.md): one owner thread holds the libmodbus
 // context; callers post tasks to it and wait for their results. The owner also keeps the host
 // heartbeat (every watchdog/4) and reads the status block with it, so a bridge whose heartbeat

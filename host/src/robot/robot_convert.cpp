@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SI arguments <-> register blocks, and the texts of rejections and faults.
 #include "robot/robot_convert.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Between the SDK's SI view of the robot (robot.hpp) and the register map's blocks
 // (protocol/robot-bridge.md): command blocks from SI arguments, status from the status block, and
 // the messages a person reads for a rejection or a fault. Pure functions, no I/O.

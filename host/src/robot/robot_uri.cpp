@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Parsing "modbus://host[:port]".
 #include "robot/robot_uri.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot bridge's URI: "modbus://host[:port]" (robot.hpp, connect_robot).
 #pragma once
 

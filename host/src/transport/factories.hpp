@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One factory per transport, each in its own file; open_transport() picks by URI scheme.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The transport over one file descriptor carrying the framed byte stream: a connected socket
 // (tcp://, sim://) or a raw tty (serial://). poll() bounds every wait by the caller's timeout;
 // a closed peer (EOF, a hung-up tty, a reset connection) is a ConnectionError.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The seam between the hid:// transport (and discovery) and hidapi: the hidapi calls the SDK
 // makes, behind a small interface, so tests can put a fake in its place and check the exact
 // reports the SDK hands to hidapi. It does not include hidapi.h; strings are UTF-8 here (hidapi's

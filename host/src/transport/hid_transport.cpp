@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // hid://[serial]: the byte stream in 64-byte HID reports, through HidApi (hidapi). SPEC.md §3
 // and §3.1; the layout is palp/protocol/usb.hpp. About 64 000 bytes/s at most (one report per
 // 1 ms interval), for machines where the vendor interface cannot be claimed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The real HidApi (hid_api.hpp): each call is the hidapi call of the same name; strings are
 // converted between hidapi's wchar_t and UTF-8.
 //

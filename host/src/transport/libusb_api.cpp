@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The real UsbApi (usb_api.hpp): each call is the libusb call of the same name, nothing more.
 #include <libusb.h>
 

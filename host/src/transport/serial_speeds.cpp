@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The termios speeds serial:// accepts: POSIX's, then Linux's higher ones where defined.
 #include "transport/serial_speeds.hpp"
 

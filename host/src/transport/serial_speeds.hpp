@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // serial:// baud rates and the termios speed constants they map to (serial_speeds.cpp holds the
 // one table; palp::serial_bauds() in transport.hpp lists it).
 #pragma once

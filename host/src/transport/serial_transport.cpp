@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // serial:///dev/ttyX[?baud=N]: a UART-attached board's tty, opened raw (termios: 8N1, no flow
 // control, no echo or line editing, CLOCAL so no modem line is waited for) and locked with
 // flock() so two hosts never share one board. Reads and writes are FdTransport's (poll-bounded).

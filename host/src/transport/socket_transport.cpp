@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tcp://host:port, sim://host:port and sim:///path: the framed byte stream over a TCP or
 // Unix-domain socket (palp-sim, or the firmware under QEMU with its UART on a TCP server).
 #include <arpa/inet.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bytes of one USB packet or HID report kept for the next read() when the caller's buffer is
 // smaller than a transfer (a transfer cannot be split on the bus): the usb and hid transports'
 // shared read-side buffer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // URI parsing for the transports (transport.hpp).
 #include <charconv>
 #include <string_view>

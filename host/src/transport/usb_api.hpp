@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The seam between the usb:// transport (and discovery) and libusb: the handful of libusb calls
 // the SDK makes, behind a small interface, so tests can put a fake in its place and check the
 // exact bytes, endpoints and timeouts the SDK hands to libusb.

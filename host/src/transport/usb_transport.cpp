@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // usb://[serial]: the byte stream over the vendor interface's bulk endpoints, through UsbApi
 // (libusb). SPEC.md §3 and §3.1; the layout is palp/protocol/usb.hpp.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live-view tests' processes: palp-sim on ephemeral loopback ports (real-time pace, so the
 // stream has the rate a user sees), palpctl monitor --plot --json against it (its first line
 // names the page's URL), palp-sim's control channel, and raw HTTP requests.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palpctl monitor --plot's server without a browser: which binds it refuses (exact messages, exit
 // 2, before the device is contacted), the answers to requests other than the page and the
 // stream (404, 405, 400, 431 for a 100 KB request line, 403 for a foreign Host), a stream that

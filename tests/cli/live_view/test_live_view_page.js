@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live view in headless Chromium against a real palp-sim and palpctl monitor --plot: the
 // page loads without errors, receives samples with the idle device's values, refreshes at
 // >= 20 Hz, Pause freezes the plots (the data keeps coming) and Resume redraws them, a gap

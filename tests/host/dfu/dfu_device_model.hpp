@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A model of the STM32G474's ROM DFU bootloader (0483:df11) as the host sees it through the
 // SDK's UsbApi seam: written from /work/shared/reference/usb-dfu-facts.md §5 and
 // stm32g474-facts.md §1.1/§6, not from the client, so the client's tests check it against the

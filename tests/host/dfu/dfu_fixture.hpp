@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The client's tests' common rig: a DfuBus (the ROM bootloader model) and a DfuseDevice opened on
 // it with virtual time (the client's sleeps advance the model's clock).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DfuSe client against injected faults of the ROM-bootloader model: each gives the exact
 // message the user sees and leaves the device in the stated state.
 #include <gtest/gtest.h>

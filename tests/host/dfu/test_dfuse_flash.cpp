@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DfuSe client against the ROM-bootloader model: opening, erase + download + read-back of an
 // image, which pages are erased, addresses refused before any request, leaving DFU.
 #include <gtest/gtest.h>

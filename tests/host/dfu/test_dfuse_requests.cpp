@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SETUP packets the DfuSe client hands to libusb, checked byte for byte against
 // usb-dfu-facts.md §5.2/§5.5 with the scripted FakeUsb (independent of the device model).
 #include <gtest/gtest.h>

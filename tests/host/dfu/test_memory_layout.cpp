@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The DfuSe memory-layout string (usb-dfu-facts.md §5.8): the G474 ROM's and the F4 example
 // parse to the documented segments; a range is mapped to its pages or refused.
 #include <gtest/gtest.h>

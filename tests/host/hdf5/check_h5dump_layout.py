@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """h5dump -H (Debian's hdf5-tools) of the files palp-hdf5-fixture wrote shows exactly the groups
 and datasets docs/hdf5-format.md's layout table states, with the stated types, and the stated
 attributes with theirs (a file may hold more attributes: the sidecar's and the analysis' typed

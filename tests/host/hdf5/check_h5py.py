@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """An independent reader of palp's HDF5 files: Debian's h5py opens the files palp-hdf5-fixture
 wrote from the known synthetic recording, result, map and identification
 (tests/host/hdf5/hdf5_fixture.hpp) and reads the known values, and every dataset's unit is the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """An independent reader of a real map: palp-hdf5-sim-map mapped a 2 x 2 grid on palp-sim into
 DIR/map and exported DIR/map.h5; Debian's h5py reads the file and its values equal what the
 directory says: map.json's k_fd per point in the grid and on each point, its touches in the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The layout table of docs/hdf5-format.md, for the independent checks (check_h5py.py,
 check_h5dump_layout.py): rows (object, kind, type, unit), and per fixture file the rows that apply
 to it with their names in angle brackets (<result>, <recording>, <point>, rep<k>, ...) expanded

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-hdf5-fixture DIR: writes DIR/recording.h5, DIR/result.h5, DIR/map.h5 (of the map directory
 // DIR/map) and DIR/identification.h5 from the known synthetic recording, result, map and
 // identification (hdf5_fixture.hpp), for the independent readers h5py and h5dump.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The known synthetic recording and result of the HDF5 tests: the C++ tests compare them after a
 // round trip, and palp-hdf5-fixture writes them for the independent readers (check_h5py.py,
 // check_h5dump_layout.py), which assert the same numbers.

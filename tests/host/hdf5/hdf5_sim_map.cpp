@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-hdf5-sim-map DIR [N REPS STOP_A]: maps an N x N grid (2) of the pad phantom on palp-sim
 // linked in (virtual time; REPS repetitions (2) of a ramp to STOP_A (1.5 A) a point) into DIR/map
 // and exports it as DIR/map.h5, for the independent reader (check_h5py_map.py compares the file

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the HDF5 test files share (not a test): a fresh directory per test, the comparison of two
 // recordings, and editing a written file with the HDF5 API as damage or a foreign tool would.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recordings and result directories as HDF5 files (palp/hdf5.hpp): read back into the same
 // objects, bit-exact; re-analysed to the same numbers as from the directory; written atomically
 // and never over a file palp did not write; a damaged or foreign file is one clear error.

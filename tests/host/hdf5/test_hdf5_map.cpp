@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Maps and identifications as HDF5 files (palp/hdf5.hpp): a map directory read back whole (map.json,
 // every point's result, bit-exact), its analysis and repetitions in the file with known numbers,
 // a damaged point kept as such; an identification's response as typed columns read back as

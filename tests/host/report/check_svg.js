@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checks a figure's SVG as vega-to-svg.js (Debian's node-vega) writes it, from its text alone:
 //
 //   node check_svg.js FIG.svg [checks...]

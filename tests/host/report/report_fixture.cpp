@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-report-fixture OUT_DIR: writes the report tests' known map (report_fixture.hpp) as
 // OUT_DIR/map, its report as OUT_DIR/map-report.html and its figures as OUT_DIR/map-svg/*.svg,
 // for the page test (test_report_page.js) and the SVG checks. OUT_DIR is replaced.

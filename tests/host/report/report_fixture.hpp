@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The report tests' known map: a synthetic 9 x 9 map (tests/host/unit/synth_map.hpp: every point
 // a result directory of a linear specimen, written by write_result and save_map) whose columns
 // 2, 5 and 8 are soft, as the paper's pad over its shallow channels (Fig. 6b).

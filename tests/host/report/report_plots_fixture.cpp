@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-report-plots-fixture DIR [--paper-like]: writes the known synthetic results
 // (report_plots_synth.hpp) under DIR, builds their report sections and writes each figure's Vega
 // spec as DIR/<id>.json, for vega-to-svg.js and check_svg.js (the report_plots.svg.* tests).

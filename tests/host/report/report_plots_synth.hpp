@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Known synthetic results for the report's figure tests (report-plots): an indentation of a
 // Hertz specimen with known E* and pressure channels of known slope (test_result_synth.hpp's
 // run, written as a result directory), an identification of a second-order system with known

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-report-sim-map OUT_DIR: a real map for the report's page test, the demo's in small: palp-sim
 // linked in (virtual time) with the 2D pad under the probe, rows 1..3 of the paper's 9 x 9 grid
 // (all nine columns, so the soft channels under columns 2, 5 and 8 are crossed), one repetition

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The identification section's figures (host/src/report/identification_section.cpp) from a
 // known second-order system G = 1 / (m s² + b s + k), m = 0.16 kg, k = 400 N/m, ζ = 0.2
 // (ω_n = 50 rad/s, f_n = 7.958 Hz): the measured points and the model curve are that G, the

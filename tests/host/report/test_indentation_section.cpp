@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The indentation section's figures (host/src/report/indentation_section.cpp) from the known
 // Hertz specimen (E* = 125.8 kPa, R = 2.5 mm, K_f = 2.918 N/A, I_c = 0.5 A, bias 1 A,
 // k_v = 0.0439 N/mm): the plotted data are that curve, the fits pass through it, δ0 and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // make_report chooses the builders by what the input is: report-plots' known indentation result
 // (result.json's experiment "indentation": the curves and the pressure channels), its known
 // identification ("identification") and its known trace (a trace.json file, or the directory

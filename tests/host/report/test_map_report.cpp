@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The map's report from a known synthetic 9 x 9 map whose columns 2, 5 and 8 are soft
 // (report_fixture.hpp): the section marks exactly those columns and embeds every point's values
 // and curves; the HTML page is one file with the Vega modules and the specs inside, refuses to

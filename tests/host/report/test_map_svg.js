@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The known map's SVG files (palp-report-fixture's map-svg/): every figure is a standalone SVG
 // with marks in it; the map's figure has the heat map's 81 cells, the colour bar's title with its
 // unit, the detail plot's axis titles with units, and the 'soft' labels of columns 2, 5 and 8.

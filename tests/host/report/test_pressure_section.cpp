@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pressure section's figure and table (host/src/report/pressure_section.cpp) from the known
 // run whose channel m reads 20 m Pa per newton of object force: the plotted points and lines
 // have those slopes, the Boyle ΔV follows from the rise.

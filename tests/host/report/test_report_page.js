@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A map's report page with columns 2, 5 and 8 soft (palp-report-fixture's known 9 x 9 map, or
 // palp-report-sim-map's real 3 x 9 one from palp-sim: CELLS is the grid's size) in headless
 // Chromium from file://, one browser for every check: no console errors or exceptions while the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The trace section's maps (host/src/report/trace_section.cpp) from a known tilted plane:
 // z = 10 + 0.5 (column − 1) mm, every normal tilted 2.862° towards −x, one failed point.
 #include <gmock/gmock.h>

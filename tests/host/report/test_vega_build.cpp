@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Vega helpers (host/src/report/vega_build.hpp): rows, extents, heat maps.
 #include <cmath>
 #include <limits>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The key structure of a JSON document, for tests that compare two documents' keys but not their
 // values (a sidecar written by the SDK against palpctl's, or against the doc's example): every
 // object key as a path in file order ("device", "device.serial", ...), the elements of an array

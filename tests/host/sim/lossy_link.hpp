@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A Transport between the Probe and the in-process simulator that loses chosen replies (or events) and
 // records every request the host sent: the lost reply of issue 17 (item 2) made exact, where
 // palp-sim's drop-frames loses every n-th device frame whatever it is.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every SDK exit path leaves the device safe (issue 17, item 2), against palp-sim linked in with a
 // link that loses exactly the replies a test chooses (lossy_link.hpp): a closed Probe drops the
 // contact hold a float left; a lost reply to a read-only or stopping request is resent with the

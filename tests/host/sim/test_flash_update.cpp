@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::flash::update end to end without hardware: the application is palp-sim linked in, posing
 // as an stm32g474 (sim+inproc board=), and the ROM bootloader is dfuclient's model of it behind
 // the UsbApi seam (tests/host/dfu/dfu_device_model.hpp), in virtual time. The controller

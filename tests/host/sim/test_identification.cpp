@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::identify and palp::calibrate_kf against palp-sim linked in (palp/sim_inproc.hpp: virtual
 // time as fast as the SDK reads, the sim's sensor noise): the acceptance of issue 7.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::indent against palp-sim linked in (palp/sim_inproc.hpp: virtual time as fast as the SDK reads): the 1D acceptance of issue 6 at
 // position 3 of the paper's three objects, the recording it returns, the displacement limit,
 // and the errors that come before the device does anything.

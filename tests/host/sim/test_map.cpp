@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 2D study (issue 6's acceptance, paper §V): a 9 x 9 stiffness map of the pad on palp-sim
 // linked in (palp/sim_inproc.hpp), with the arm placing the probe, in virtual time.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calibration helpers against palp-sim linked in (palp/sim_inproc.hpp), each with a known
 // answer: an offset put into the
 // calibration on purpose is found and taken out again; homing finds the rear end stop the

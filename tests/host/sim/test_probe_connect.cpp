@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe client against palp-sim: the handshake and its verdicts, device info, requests and
 // the errors a person reads when something is refused or missing. Over a real socket where the
 // socket or the pace matters (connecting, nothing listening, a wait in real time); the rest

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming from palp-sim through the SDK: order, no loss at 10 kHz, every loss reported as a
 // gap record with its source, back-pressure, the device-to-host clock mapping and reconnect.
 // Reconnect and the clock mapping's pace run palp-sim as a process over a socket (restarting

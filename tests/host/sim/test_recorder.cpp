@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::record / palp::Recorder (palp/recorder.hpp) against palp-sim linked in (virtual time): a
 // stream of exactly its duration with health in the sidecar, frames the simulator drops as gap
 // records, a cancel that stops program and stream and leaves a complete recording, an error

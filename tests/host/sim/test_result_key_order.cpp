@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // result.json's top-level keys come in the order docs/result-format.md's table lists them: an
 // indentation result written by palp::write_result (no device needed: a recording of three rows,
 // not analysed) read back keeping its key order, against the doc's table.

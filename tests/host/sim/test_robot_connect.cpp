@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Robot against palp-sim's robot bridge emulator over a real Modbus TCP socket: the connect
 // checks, linear moves read back to the micrometre, moves in the tool frame, rejections with
 // their exact text, local checks that send nothing, a robot fault, and the host heartbeat the SDK

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::Robot's link handling against palp-sim's emulator (robot-bridge.md §9): a reply delayed
 // past the response timeout makes the client reconnect and the command still runs exactly once;
 // a dropped connection is re-established transparently; a command whose write failed is

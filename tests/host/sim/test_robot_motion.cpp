@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Guarded approach and stop through palp::Robot against palp-sim's emulator: the force guard
 // stops the arm on the solid_1d phantom where the tip has indented it, and a stop in the middle
 // of a motion returns the pose latched when it was taken, short of where the arm came to rest;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim with the robot bridge emulator on (--robot-port 0), for the robot client's tests: the
 // device socket is left alone (the robot client alone keeps virtual time running), the arm starts
 // with the flange at base (600, 0, 550) mm pointing down (C = 180 deg), the probe tip 50 mm above

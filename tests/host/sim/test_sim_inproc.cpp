@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The in-process simulator (palp/sim_inproc.hpp): its transport's time model (virtual time runs
 // inside read(), stalls while device bytes wait, holds on a contact event until the host's next
 // bytes, the heartbeat watchdog on the wall clock), sim+inproc:// URIs, its control channel, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tcp:// and serial:// against a real palp-sim process: tcp://HOST:PORT is the simulator's
 // device socket under the name a user expects; serial:// is reached through a pseudo-terminal
 // whose master a relay thread joins to that socket byte for byte, as a UART-attached board's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface tracing against palp-sim linked in (palp/sim_inproc.hpp: the probe's transport in
 // process, the robot-bridge emulator on a loopback Modbus TCP port, one simulation), with the
 // model's own surface as the truth (issue 5's acceptance).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact-point latency independence (docs/reliability.md section 7): the traced contact point
 // is the tip apex at rest (the TCP plus the coil's stroke, both read after the arm stopped) moved
 // back by the detection force's indentation, so how late the arm stops must not move it. Traced

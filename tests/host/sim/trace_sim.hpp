@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the surface-tracing tests against palp-sim linked in share: the rig that matches
 // palp-sim's default frames and the 2D pad's probing grid.
 #pragma once

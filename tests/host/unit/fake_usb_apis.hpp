@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fakes of the libusb and hidapi seams (transport/usb_api.hpp, transport/hid_api.hpp) for the
 // usb://, hid:// and discovery tests: devices are described by the test, every call is recorded
 // with its arguments, and every transfer or report with its bytes.

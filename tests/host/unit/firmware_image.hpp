@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Firmware image files for the tests of palp::flash and `palpctl flash`: a .bin with a filled
 // metadata block (image_metadata.hpp), as fill_metadata.cmake leaves it, and its variants (a
 // corrupted byte, another board, another protocol).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A pseudo-terminal pair for serial:// tests: the slave is the tty the transport opens by name
 // (serial:// + slave_name()), the master is the far end (the "board"). The slave is also held
 // open here, as openpty() does, so the master never reads EIO before the transport opens it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A synthetic map directory with known stiffnesses, written by the SDK's own writers
 // (write_result per point, save_map for map.json): for the tidy CSV's tests (SDK and palpctl).
 #pragma once

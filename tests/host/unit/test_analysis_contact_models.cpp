@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact laws: the exact sphere against Hertz (analysis-notes ratios), derivatives, the paper's
 // operating-point arithmetic, the thickness factor.
 #include <gtest/gtest.h>

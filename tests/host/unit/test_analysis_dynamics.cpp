@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // From a second-order fit to the paper's quantities: the paper's own numbers (analysis-notes.md
 // "Paper cross-checks"), the moduli of a synthetic contact of known k', k'', the Sneddon contact
 // radius at the paper's operating points, and the refusals with their text.

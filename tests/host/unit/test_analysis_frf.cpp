@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Nonparametric frequency responses (frequency_response.hpp) against synthetic recordings built
 // from the device's exact program waveforms (program_schedule.hpp, multisine.hpp): a known
 // linear G(jw) in steady state on every line, the stream decimated 20 from 20 kHz, the program

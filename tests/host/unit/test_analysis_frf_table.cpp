@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frequency-response tables: both layouts give the same G, the optional sigma column, comments,
 // the sign-convention note, and every refusal with its exact text (file:line: problem).
 #include <gtest/gtest.h>

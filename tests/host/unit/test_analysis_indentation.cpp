@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Quasi-static indentation analysis against synthetic curves with a known answer: 1 um encoder
 // quantisation, 2 mA rms current noise, fixed seed (issue 6 acceptance), model choice by AIC,
 // the paper's operating point, bad input.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The indentation fits on the staircase's plateau means (IndentationParams::fit_on, issue 16)
 // against the fits on every sample: the same answer within the standard errors on a staircase
 // whose probe rings inside each step as palp-sim's does, exactly the same answer when the probe

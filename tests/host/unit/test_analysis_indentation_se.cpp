@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // derived_se: the delta-method standard errors of delta0 and the tangent stiffnesses, on fits
 // built by hand where the answer is known in closed form.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Force-constant calibration (kf_calibration.hpp) against a synthetic free-air staircase: the
 // plant's K_f(s) table (palp::plant::default_kf_table), k_v 43.9 N/m, the coil settling on every
 // stair at K_f(s) i - c = k_v s; the stream decimated 20 from 20 kHz, the ramp starting between

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The K_f(stroke) table (IndentationParams::kf_table_*): interpolation, a fit on a curve made with
 // a sloped K_f, and taking the table from a recording's sidecar only with its stroke origin.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pressure analysis (palp/analysis/pressure.hpp): known answers. The paper's §V-D volumes and
 // volume changes, hand-computed Boyle values, lines through synthetic noisy pressures, and the
 // hysteresis of branches with a known gap.

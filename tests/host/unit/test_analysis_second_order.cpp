@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The second-order fit on synthetic responses of known m, b, k: exact without noise, unbiased and
 // with honest standard errors under noise (where the linear start is biased), a normalised cost
 // that rejects a wrong model, and the input checks with their exact text.

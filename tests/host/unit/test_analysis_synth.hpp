@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Synthetic quasi-static indentation recordings with a known answer (for the analysis tests).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The experiments' two kinds of analysis failure (issue 16), for palp::analyze_run and
 // palp::analyze_identification: data the analysis cannot use becomes the run's analysis_reason
 // (the DataError's exact text), while a bad setting is a ConfigError that reaches the caller

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The readers' limits (format/text_input.hpp, docs/reliability.md §4): a line over 64 KiB and a
 // file over its kind's limit are refused as soon as the limit is passed, naming the file, the
 // line and the limit; what a message quotes of a file is cut at 60 bytes and escaped, so a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The device-to-host clock fit on synthetic round trips with a known offset and drift, queueing
 // delays that only ever add latency, and a rate that changes part-way.
 #include <gtest/gtest.h>

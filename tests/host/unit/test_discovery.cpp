@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Discovery: the real enumeration on this machine (no palp controller here, perhaps no USB at
 // all) is an empty list, never an error; through fakes, the USB and HID views of a controller
 // merge into one listing with both URIs and the firmware version from bcdDevice, and a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp::flash before any device is involved: reading and refusing images (palp/flash.hpp step 1),
 // the board check's text, the recovery text, and the kept calibration's file rules.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // hid://: the transport down to the hidapi calls, through a fake HidApi that records them: the
 // exact 65 bytes of every report written (report ID 0x00, 64 stream bytes, zero padding only
 // after a frame's delimiter), reads reassembling frames, timeouts, unplugging, choosing by serial

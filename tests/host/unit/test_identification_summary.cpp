@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The identification summaries (palp/identification_result.hpp): each written and read through one
 // field table, in lab units; a number that is not finite written null with `<key>_reason`; a
 // missing key named in result.json's way.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // analyze_map on a map of known stiffness: soft lines against the median line, absent points.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // read_recording: what it tolerates (tabs, CRLF, comments, a byte order mark, any column order, a
 // LabVIEW export of three columns) and, for everything malformed, the exact line and problem.
 #include <gtest/gtest.h>

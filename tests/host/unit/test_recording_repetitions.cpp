@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // split_repetitions_at_current_minima: known answers on synthetic currents. A noisy staircase
 // repeated three times gives exactly three repetitions, each starting where the load starts
 // again; noise, holds and shallow dips never split.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writing and reading back: bit-exact doubles (0.1, 1e-7, -0.0, subnormals, the extremes), a
 // million rows, column subsets; the writer's atomicity (nothing under the final names until
 // finish(), nothing at all when it is destroyed unfinished) and its refusals.

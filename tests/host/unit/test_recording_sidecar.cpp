@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sidecar: every field round-trips (an unknown stroke origin as null with its reason, unknown
 // keys kept), the writer fills what it knows, and a malformed sidecar is refused with the key or
 // the line and column.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers for the recording tests: a fresh directory per test, whole-file text, the exact
 // RecordingError check, and a staircase current whose repetition starts are known.
 #pragma once

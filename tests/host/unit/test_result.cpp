@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Result directories (palp/result.hpp): written whole into place, read back with the same numbers,
 // the JSON keys in lab units, and errors that name the file.
 #include <gmock/gmock.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // result.json's "run" block (host/src/experiments/run_json.hpp): one field table per experiment,
 // written and read back the same; a missing key named in result.json's way.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A synthetic indentation run with a known answer, as indent() returns it: the result directory
 // tests (test_result.cpp) and the HDF5 result tests (tests/host/hdf5) write and read it.
 #pragma once

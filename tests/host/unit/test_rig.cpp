@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rig and plan files: the documented examples load with the stated values, defaults fill the
 // optional keys, a region and an origin + pitch give the same grid, a saved rig reads back, and
 // every bad file gives one line naming the file, the key and the problem.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot client's conversions, without a bridge: SI arguments to command registers (exact
 // registers against robot-bridge.md §10, rounding to nearest, the map's limits refused locally
 // with the register named), the status block in SI, the identification checks, and the texts of

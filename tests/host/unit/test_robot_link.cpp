@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot client's link errors without a bridge: nothing listening, or a peer that accepts the
 // connection and never answers. Both fail at once (no retry on the first connect) with a
 // RobotLinkError that names the URI and the system's reason.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Robot URIs: "modbus://host[:port]" gives host and port (30005 by default); everything else is
 // refused with a ConfigError that quotes the URI and says what is wrong.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // serial:// on a pseudo-terminal (no /dev/ttyS* needed): the tty is made raw (every byte value
 // passes unchanged both ways, nothing echoed), 8N1 at the baud asked for with no flow control;
 // a missing path, a file that is no tty, permission denied and a tty already in use are refused

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every SDK entry point's settings refuse NaN and infinities by the field's name (issue 17, item
 // 3, the SDK half): a range check alone lets NaN through, as every comparison with it is false.
 // One test per settings struct, each field set to NaN, +inf and -inf in turn; and a request whose

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stream assembler on synthetic batches with known indices: samples in SI units, every
 // missing run a gap with the right source and size, the 32-bit wire index extended past its
 // wrap, batches that go backwards refused, reconnect gaps sized from device time.

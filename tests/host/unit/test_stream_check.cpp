@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stream requests are checked before anything is sent: rates that do not divide the control
 // rate, unknown channels, oversized batches and streams a transport cannot carry are refused
 // with the numbers in the message.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface analysis with known truth: exact plane normals, a sphere, the stencil on a 15-degree
 // sine, a touch-off on a rotated and translated frame, the contact point of a sphere tip on a
 // 10-degree plane, the indentation formulas against hand values, and one-line errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tidy CSV (palp/tidy_csv.hpp, docs/result-format.md "The tidy CSV"): exact bytes for a
 // synthetic 2 x 2 map of known stiffnesses, one row per point and repetition, every key of a
 // repetition's summary a column, damaged and missing points kept with their reason, and the

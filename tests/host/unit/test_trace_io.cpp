@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Trace files (trace.hpp save_trace/load_trace): a round trip keeps what was measured and derives
 // the rest again; malformed files give one line naming the file and the problem.
 #include <gtest/gtest.h>

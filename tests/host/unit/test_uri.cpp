@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // URIs: every accepted form parses to its parts; every malformed one is refused with a message
 // that names the URI and the problem.
 #include <gmock/gmock.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // usb://: the transport down to the libusb calls, through a fake UsbApi that records them: the
 // exact bytes, endpoints, lengths and timeouts of every bulk transfer, the zero-length packet
 // rule, reads reassembling frames, timeouts, unplugging, choosing by serial number and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Built against an installed palp with palp::analysis and palp::recording alone: a Hertz force
 // with a known value, the repetitions of a synthetic two-ramp current trace, and that trace
 // written as a recording (argv[1]: its stem) and read back from the files, all through the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Built against an installed palp: the public headers (the protocol's included through probe.hpp)
 // and palp::sdk with its link dependencies must all come from the installed package.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes a three-sample recording as HDF5 with the installed palp::hdf5 and reads it back.
 #include <cstdio>
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Built against an installed palp with palp-sim linked in: connect to a simulated controller by
 // URI (the real firmware core on the solid phantom, shipped inside the installed library), hold
 // 0.2 A for 0.5 s of virtual time, and print what the device says.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The scene's elastic contact law: Sneddon sphere from a compile-time table, bottom effect.
 #include "contact_law.hpp"
 

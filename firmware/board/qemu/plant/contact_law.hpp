@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The scene's contact law in single precision: the exact Sneddon sphere (tip radius R = 2.5 mm)
 // on solid_1d's bonded 15 mm layer at position 3 (Dimitriadis bottom effect), Kelvin-Voigt
 // viscosity and a participating mass: hil/plant README.md "Equations" (Contact) with the numbers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FloatPlant: hil/plant's Plant::step for the fixed scene, in float (README.md "Model").
 #include "float_plant.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FloatPlant: the probe and one phantom, in single precision, for the QEMU board to read its
 // sensors from (README.md in this directory). A port of the part of hil/plant that one scene
 // needs: the coil's electrics (R, L, back-EMF with K_f(s)), the moving coil on its springs with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Benchmark image (figures, not a test): the instructions FloatPlant::step() and sensors() cost
 // on the Cortex-M4F, counted with SysTick under `qemu-system-arm -icount shift=0` (1 SysTick
 // count = 40 instructions, identical on every run; reference/qemu-icount.md).

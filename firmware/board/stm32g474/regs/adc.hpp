@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ADC1 (coil current + bridge supply, injected group) and ADC2 (six pressure channels, regular
 // scan + DMA) and their common block. Bases: stm32g474-facts.md §2 (ADC1 0x5000_0000, ADC2
 // 0x5000_0100, ADC1/2 common 0x5000_0300); register offsets and fields: §4.4. IER is not in the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every register definition of the STM32G474 board, in one list the SVD cross-check walks
 // (tests/stm32). A definition added under regs/ must be added here.
 #pragma once

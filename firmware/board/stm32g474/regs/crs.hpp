@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CRS: the clock recovery system trimming HSI48 to USB SOF. Base: stm32g474-facts.md §2;
 // CR and CFGR offsets and fields: §3.3.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DMA1 channel 1 and DMAMUX1 channel 0 (its request line): the ADC2 pressure scan into RAM.
 // Bases: stm32g474-facts.md §2 (DMA1 0x4002_0000, channel n registers at +0x08 + 0x14·(n−1);
 // DMAMUX1 0x4002_0800, channel CCRs from 0x00); CCR bits and the channel mapping (DMA1 channel n

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FLASH controller. Base: stm32g474-facts.md §2 / §1.2; offsets and fields: §1.2 (ACR, KEYR, SR,
 // CR), §1.3 (OPTR); ECCR's fields are not in the facts sheet: they are ST's SVD's (the SVD
 // cross-check in tests/stm32 holds every field here to it), their meaning noted per field.

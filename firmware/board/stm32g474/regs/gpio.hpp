@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GPIOA/B/C: the status LED pin PA5 (NUCLEO LD2) and every pin of the README pin table
 // (pins.hpp). Base: stm32g474-facts.md §2
 // (GPIOA..GPIOG at 0x4800_0000 + 0x400·n); clocks: RCC AHB2ENR.GPIOxEN (rcc.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // IWDG: the independent watchdog on the LSI. Base: stm32g474-facts.md §2; registers, fields and
 // keys: §4.7.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PWR: voltage scaling and Range-1 boost. Base: stm32g474-facts.md §2; CR1 and CR5: §3.1.
 #pragma once
 

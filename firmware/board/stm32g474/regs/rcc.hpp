@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RCC: the registers the clock init uses. Base address: stm32g474-facts.md §2; register offsets
 // and fields: §3.1 (RCC_CR, RCC_CFGR, RCC_PLLCFGR, RCC_CCIPR, RCC_CRRCR, enable registers);
 // APB1ENR1.PWREN/CRSEN: §2 (bus / RCC enable column).

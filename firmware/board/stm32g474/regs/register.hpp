@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The register-access seam of the STM32G474 board: every register the board touches is a
 // constexpr Register (peripheral, SVD register name, absolute base, offset, bit fields), and the
 // drivers read and write through an Access object so the same init code runs on the target

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TIM1 (advanced timer: the H-bridge PWM and the ADC trigger), TIM2 (32-bit: the quadrature
 // encoder) and TIM5 (32-bit: the board's free-running microsecond clock). Bases: stm32g474-facts.md
 // §2; offsets: §4.1; TIM1 fields: §4.2; TIM2/TIM5 fields: §4.3 (both 32-bit). TIM5 is derivedFrom

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LPUART1: the host link over the NUCLEO's ST-LINK virtual COM port (PA2 TX / PA3 RX,
 // stm32g474-facts.md §4, pin note "PA2/PA3 = LPUART1 to ST-LINK VCP"). The facts sheet
 // gives neither LPUART1's base nor its registers: base, offsets and fields below are ST's SVD

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // USB: the full-speed device peripheral ("FSDEV", 16-bit variant). Register base, PMA base and
 // size: stm32g474-facts.md §5.1; register offsets, fields and write semantics: §5.2. The SVD
 // calls the peripheral USB_FS_device and the cross-check (tests/stm32) pins every definition

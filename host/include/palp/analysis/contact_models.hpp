@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact laws for a rigid spherical tip on an elastic half-space, in SI (m, N, Pa).
 //
 // Depth delta = z - z_c >= 0 below the contact point; E* = E / (1 - nu^2) (rigid tip).

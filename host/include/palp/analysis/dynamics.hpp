@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // From a fitted second-order model to what the paper reports (issue 7; paper §III-A, §IV-B;
 // analysis-notes.md "Viscoelastic outputs"): the instrument's own m_v, b_v from free air, the
 // effective mass and the object's damping in contact, and beyond the paper the complex contact

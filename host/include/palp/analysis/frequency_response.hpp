@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Nonparametric frequency responses from a recording (issue 7, analysis-notes.md "Nonparametric
 // FRF"): the device's stepped sine and periodic multisine, cut exactly as the device ran them
 // (palp/protocol/program_schedule.hpp), and the multisine's true peak for the contact checks.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A measured frequency response (issue 7): the types every frequency-response function shares.
 //
 // G = Z / F in m/N: force F = K_f I in (the measured coil current times the force constant),

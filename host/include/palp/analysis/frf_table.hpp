@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frequency-response tables (issue 7, `palpctl analyze sweep --input table.csv`): a CSV with a
 // header row naming one of two layouts, one line per row, '#' comment lines allowed:
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Quasi-static indentation analysis (issue 6): plain functions over Eigen data, no I/O, no device.
 //
 // SI everywhere (m, N, N/m, Pa, A); the CLI converts to lab units. Conventions from DESIGN.md:

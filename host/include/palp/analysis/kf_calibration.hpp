@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Force-constant calibration in free air (issue 7): the coil is held at static currents along
 // its stroke (a slow staircase, both ways) and each settled level gives a balance
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pressure analysis (issue 6, paper §V-D): plain functions over Eigen data, no I/O, no device.
 //
 // SI everywhere (N, Pa, m, m^3); the CLI converts to lab units (mm^3). Pressures are gauge

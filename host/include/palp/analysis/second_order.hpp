@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The second-order fit of a frequency response (issue 7, analysis-notes.md "Parametric fit"):
 // G(s) = 1 / (m s^2 + b s + k), force in, displacement out, SI units.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface analysis for a traced grid (issue 5): the work-object frame from a three-point
 // touch-off, the zero-force contact point from a guarded approach, and the normals and tilts of
 // the traced surface. Plain functions over Eigen vectors: no I/O, no device. SI (m, N, N/m, Pa).

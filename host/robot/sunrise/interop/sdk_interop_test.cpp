@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SDK's Modbus robot client (palp::connect_robot, libmodbus) against the Java bridge core
 // (ModbusTcpServer + BridgeCore of host/robot/sunrise) with a simulated arm (LoopbackBridge): two
 // independent implementations of protocol/robot-bridge.md over a real loopback socket. The

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """bridge_check: commissioning checks of a palp robot bridge (host/robot/sunrise/COMMISSIONING.md).
 
 Its own Modbus TCP client over the standard library (no SDK, no libmodbus), with the register map

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """End-to-end test of bridge_check.py against the Java bridge core (ModbusTcpServer + BridgeCore)
 with a simulated arm (LoopbackBridge) on a loopback ephemeral port.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Rejects Java language features and library packages newer than Java 6 in the bridge core.
 
 KUKA Sunrise runs an old Java; the core is compiled with `javac --release 7`, which alone would

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Self-test of java6_lint.py: a file with one newer feature per line must fail, naming each
 feature at its file:line; the same features inside comments and strings, and plain Java 6 code
 (including switch defaults and generics), must pass."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by
 # protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run
 #   build/release-with-assertions/protocol/palp-rb-constants python --write host/robot/sunrise/tools/palp_rb_map.py

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim linked into the program: the simulated instrument (hil/sim's Instrument: the real
 // firmware core against the plant, in virtual time) behind a palp::Transport, with no process
 // and no socket — for tests and a lab's CI that check their tooling against the simulator.

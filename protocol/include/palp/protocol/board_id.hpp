@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The boards a palp firmware image is built for: one number per board (the image metadata's
 // board field, image_metadata.hpp) and its name (the text DeviceInfo.board carries).
 //

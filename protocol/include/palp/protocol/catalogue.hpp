@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // THE message catalogue of the palp wire protocol: defined here once, as X-macros.
 //
 // Everything else (the C++ structs, their encoders and decoders on the firmware and the host,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Consistent Overhead Byte Stuffing (SPEC.md §4.1): removes every 0x00 from a frame so that
 // 0x00 can delimit frames on any byte stream. At most one byte of overhead per 254 bytes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Payload encoding and decoding, written once over every message's visit().
 //
 // Encoding: fields in catalogue order, little-endian; A arrays element by element; V arrays a

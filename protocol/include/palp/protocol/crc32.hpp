@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CRC-32 as used by every palp frame (SPEC.md §4.3): the common "CRC-32/ISO-HDLC" (zlib, PNG,
 // Ethernet): polynomial 0x04C11DB7, reflected (table polynomial 0xEDB88320), init 0xFFFFFFFF,
 // reflected input and output, final xor 0xFFFFFFFF. Check value: crc32("123456789") = 0xCBF43926.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frames (SPEC.md §4): a header, a little-endian payload and a CRC-32, COBS-encoded and ended
 // by one 0x00 byte. The same frames travel over USB bulk, HID reports, UART and TCP.
 //

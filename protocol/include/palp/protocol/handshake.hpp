@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The handshake verdict (SPEC.md §8): what a host and a device that exchanged Hello/DeviceInfo
 // may do together. Portable: the firmware judges the host's Hello with the same function.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The metadata block of a palp firmware image: what the image is (board, firmware version,
 // protocol version and schema hash) and how to check it is whole (size, CRC-32), read by the
 // host before anything is flashed. One definition: the firmware places an ImageMetadata in

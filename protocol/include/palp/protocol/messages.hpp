@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The protocol's enums and message structs, expanded from catalogue.hpp.
 //
 // Every message is a plain struct with its fields as members (initialised to the catalogue's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Multisine line phases (PhaseMode, SPEC.md §10 notes), defined exactly so that the device,
 // which generates the waveform, and the host, which analyses it, compute the same phases bit for
 // bit. Line n is line_amplitude_A * cos(2*pi*(f_n*t + phi_n)) about offset_A, f_n =

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Program timing as pure functions of a Load* message and the control rate: how many levels,
 // lines and ticks a program has, exactly as the device runs it. The host needs the same numbers
 // to cut a recording into ramp levels and sweep lines, so everything here is integer arithmetic

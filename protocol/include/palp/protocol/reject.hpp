@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Why a frame or a message was rejected, and the counters that record it.
 // Every malformed input is rejected with exactly one of these reasons and counted once.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The schema hash (SPEC.md §7): CRC-32 of the catalogue's canonical text. The canonical text is
 // written here once, over a sink, so the same code computes the hash at compile time (for the
 // firmware and the SDK) and prints the text (for SPEC.md and third parties who recompute it).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stream samples (SPEC.md §9): the channels of a sample, their scaling, and the byte rate of a
 // stream configuration. A SampleBatch's data holds sample_count samples back to back; each
 // sample holds the channels whose bits are set, in bit order, little-endian, no padding.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The controller's USB identity and endpoint layout (SPEC.md §3.1): shared by the firmware's
 // USB descriptors and the SDK's usb:// and hid:// transports, so both sides use one definition.
 //

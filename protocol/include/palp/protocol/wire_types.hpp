@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Wire types of the palp protocol: the scalar aliases the catalogue names, fixed strings,
 // fixed arrays and bounded arrays, and the little-endian reader/writer every codec uses.
 //

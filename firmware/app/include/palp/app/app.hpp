@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe-controller firmware as a program: the core's Controller wired to a board (board.hpp).
 //
 //   boot       the board's identity, the stored calibration (blank or bad: the core's defaults,

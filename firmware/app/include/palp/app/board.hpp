@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The board seam: what a board gives the firmware app (app.hpp). The app owns every decision
 // (through the core's Controller); a board only moves bytes, samples sensors, drives the coil
 // and touches registers. Two boards implement it: QEMU's mps2-an386 (firmware/board/qemu, the

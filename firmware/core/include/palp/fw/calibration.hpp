@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calibration block: what proto::Calibration carries, as the board stores it in its own
 // flash page (DESIGN.md: it survives firmware updates and is migrated, never silently reset).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The probe controller: every decision the firmware makes, with no hardware access. A board
 // (STM32G474, QEMU, palp-sim) calls tick() at the control rate with the raw sensor values and
 // applies the coil voltage it returns; it hands received bytes to receive(), sends what

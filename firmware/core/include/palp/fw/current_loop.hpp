@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The coil current loop: a PI controller from current set-point (A) to coil voltage (V).
 //
 // Design: pole-zero cancellation. The coil is an RL load, i' = (v - R i) / L. A PI controller

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The linear encoder (POSIC ID1102L, quadrature, paper §II-A): position, velocity, index.
 //
 // The board's quadrature timer gives a 16-bit count that wraps. Every control tick the core

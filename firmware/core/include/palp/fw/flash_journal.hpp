@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A two-slot (A/B) journal in flash for one small block (the calibration block, calibration.hpp):
 // a power loss at any step of a commit leaves the old or the new block readable, never neither.
 // Board-independent: it runs over any JournalFlash (below); the STM32G474's is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The coil's I²t thermal model (part of Safety, safety.hpp).
 //
 // ASSUMPTIONS: the VC250 coil's thermal data is not in the paper; the model and its parameters

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The multisine generator: up to kMaxMultisineLines cosines summed in a bounded, constant amount
 // of work per control tick.
 //

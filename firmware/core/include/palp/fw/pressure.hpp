@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The six pressure channels (paper §V-A: ELVH-L05D differential transducers on the pad's air
 // channels) and the current-sense calibration.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The six on-device programs, one small class each. ProgramRunner (programs.hpp) holds one of
 // them at a time in a tagged union and is what the controller uses; this header is the detail.
 //

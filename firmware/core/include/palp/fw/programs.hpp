@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ProgramRunner: the on-device waveform programs (DESIGN.md "Firmware principles"). The host
 // sends a program's parameters (LoadHold ... LoadContactWatch) and ProgramStart; from then on the
 // control tick calls step() once per tick and gets the coil current set-point, with no host or

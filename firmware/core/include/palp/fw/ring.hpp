@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A fixed-capacity ring for one thread (no atomics): the stream backlog, the transmit buffer.
 // For the ISR-to-thread hand-off use spsc_queue.hpp instead.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safety: current clamp, coil I²t model, travel limits, overcurrent, host heartbeat watchdog and
 // the fault latch (DESIGN.md "Firmware principles"). Any fault drives the current to zero at
 // once: the only set-point the current loop may use is the one check() returns, and it is 0 A

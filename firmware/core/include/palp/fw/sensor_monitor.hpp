@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensor and actuator plausibility: the checks that tell a failed sensor or power stage from the
 // physics it should be measuring (docs/reliability.md section 5). Every control tick the
 // controller hands it the raw readings; what it finds goes to Safety (SafetyInputs::sensor_fault),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fixed-capacity single-producer single-consumer queue: the ISR-to-thread hand-off of the
 // firmware core (DESIGN.md "Firmware principles").
 //

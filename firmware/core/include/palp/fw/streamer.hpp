@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stream, thread side (DESIGN.md "Streams"): samples taken by the control tick arrive here
 // with their stream index; the streamer keeps them in the stream backlog, packs them into
 // SampleBatch frames when the transmit buffer has room, and reports every loss where it happened:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Waveform primitives for the control tick: phases as u32 fractions of a turn, and sine and
 // cosine from a small table with linear interpolation. Cheap enough to run hundreds of times per
 // tick on a Cortex-M4F: one table lookup is ~10 instructions, no division, no libm.

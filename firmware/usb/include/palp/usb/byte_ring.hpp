@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A fixed-capacity single-producer single-consumer ring of bytes: the device core's two stream
 // buffers between the USB interrupt and the main loop (device.hpp). Received bytes: the USB
 // interrupt produces, the app's link_read() consumes; bytes to send: link_write() produces, the

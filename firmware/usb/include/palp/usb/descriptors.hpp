@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The USB descriptors of the probe controller (protocol/SPEC.md §3.1; contract 2 of the USB
 // device: the core's GET_DESCRIPTOR and vendor requests call these). The identity and the
 // endpoint layout come from palp/protocol/usb.hpp (one definition, shared with the SDK).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The USB device core (firmware/usb/README.md): Device<H> over any UsbHardware H (hardware.hpp,
 // contract 1) answers the control requests of enumeration and carries the protocol's byte stream
 // (SPEC.md §3, §3.1; palp/protocol/usb.hpp) over the vendor interface's bulk endpoints and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contract 1 (/work/team19.md): the USB device hardware interface. The device core
 // (device.hpp, Device<H>) drives any H satisfying UsbHardware; the STM32G474's FSDEV driver
 // (firmware/board/stm32g474/usb_fsdev.hpp) implements it, and the host tests implement it with a

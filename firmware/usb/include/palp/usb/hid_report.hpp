@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HID interface's report descriptor (protocol/SPEC.md §3.1): one vendor-defined 64-byte input
 // report and one 64-byte output report, no report ID, so every report is 64 stream bytes.
 // Items from ../shared/reference/usb-dfu-facts.md §2.3 (prefix byte = tag << 4 | type << 2 |

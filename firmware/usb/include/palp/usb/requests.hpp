@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control requests the device core answers, and the rules it applies that need no hardware
 // (usb-dfu-facts.md §1.1-§1.2, §1.11, §2.2, §4.4; the section is cited at each constant). Pure
 // functions, tested on their own and used by Device<H> (device.hpp).

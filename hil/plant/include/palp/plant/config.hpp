@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PlantConfig: every number of the probe model (coil, mechanics, sensors, noise), with the
 // paper's values as defaults and the source of each in a comment. SI units throughout.
 //

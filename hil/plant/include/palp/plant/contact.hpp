@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact of the spherical tip with a phantom (README.md "Contact"):
 //
 //   elastic part   sphere on a bonded layer (Hertz or exact Sneddon sphere, tabulated, times the

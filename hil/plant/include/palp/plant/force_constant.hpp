@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // K_f(s): the coil's force constant along the stroke, a piecewise-linear table (see config.hpp
 // for the default points and README.md for why it is flat over the working range).
 #pragma once

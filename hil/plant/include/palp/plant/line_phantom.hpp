@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The paper's 1D test objects (§IV): a bar with ten probing positions along x, each with its own
 // contact law (the file lists one value per position); between positions the law is
 // interpolated linearly in x (the layer thickness in 1/h, so "0 = half-space" blends smoothly).

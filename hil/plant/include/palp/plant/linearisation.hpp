@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Small-signal linearisation of the plant about its static equilibrium at a bias current
 // (README.md "Equations"): the reference the dynamic identification (issue 7) is judged by.
 //

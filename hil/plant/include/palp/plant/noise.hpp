@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Counter-based Gaussian noise: the sample for (seed, stream, tick) is a pure function of those
 // three numbers, so a run repeats exactly for a given seed whatever the order or number of sensor
 // reads, and one sensor's reads never shift another's noise.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The paper's 2D pad (§V): 90 x 100 mm of Elastic 50A with a wavy top, a 9 x 9 probing grid and
 // six sealed air channels read through Boyle's law (geometry: README.md "Pad").
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Phantoms: specimens the probe presses on, each loaded from a readable parameter file in
 // hil/plant/phantoms/ (format and every key: README.md "Phantom files").
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plant: the probe (coil electrics, moving coil on its springs and slides, end stops, tip) and
 // the phantom it touches, advanced one control tick at a time by the simulator.
 //

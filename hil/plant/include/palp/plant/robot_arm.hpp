@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotArm: the KUKA iiwa as the robot-bridge emulator needs it, in virtual time, no I/O.
 //
 // What is modelled (and what is not):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensor transfer functions shared by the plant and by anyone who decodes its codes.
 // ADC widths (bits) are 2..16, as PlantConfig requires.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A byte-stream server for palp-sim: one listening socket (TCP or a Unix-domain socket), one
 // client at a time, non-blocking, driven by the simulator's own loop through poll().
 //

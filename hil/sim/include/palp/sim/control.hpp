@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // palp-sim's control channel: the simulator's own knobs, never part of the device protocol.
 // One command per line, words separated by spaces; every command is answered with one line,
 // "ok ..." or "error: <what is wrong>". Lab units with the unit in the word (mm, Hz, ms).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Instrument: the simulated instrument palp-sim serves, without any socket: the controller's
 // firmware core against the plant in a Simulation, and with the robot on, the arm that carries
 // the probe (RobotWorld). It applies the control channel's commands (control.hpp); the ones

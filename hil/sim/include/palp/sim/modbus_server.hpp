@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ModbusServer: palp-sim's Modbus TCP server for the robot bridge (protocol/robot-bridge.md §2),
 // built on libmodbus, single-threaded and non-blocking: palp-sim's main loop calls poll().
 //

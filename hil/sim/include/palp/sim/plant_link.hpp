@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The physical model (hil/plant) as the simulation's PlantLink: the sensors a board would read.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotBridge: the robot-bridge application of protocol/robot-bridge.md as palp-sim emulates
 // it, without sockets. It holds the register map, runs the bridge's cycle (§8.3) in virtual time
 // on a RobotArm, and answers Modbus-level accesses (§3) with the exception code to send.

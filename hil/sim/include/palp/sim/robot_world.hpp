@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RobotWorld: the one shared world of palp-sim with the robot on (--robot-port): the probe hangs
 // on the arm's flange, the phantom sits in the robot's base frame, and each virtual tick
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sensor and actuator faults in palp-sim (the control channel's `fault ...` commands): what a
 // broken encoder, current-sense ADC, H-bridge driver or supply does to the readings the board
 // takes and to the voltage the coil gets. FaultyPlant wraps the simulation's PlantLink and applies

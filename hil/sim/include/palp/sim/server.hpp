@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Server: palp-sim's loop, serving an Instrument over sockets (hil/README.md "palp-sim: virtual
 // time"): the device protocol on one ByteServer, the control channel on another, and with the
 // robot on, the robot bridge's ModbusServer. One step():

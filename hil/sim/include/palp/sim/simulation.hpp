@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The simulated world: the real firmware core (palp::fw::Controller) against a physical model, in
 // virtual time, with the host link's rules from hil/README.md: results never depend on wall time,
 // the simulation stalls rather than drops, and a contact event holds virtual time until the host

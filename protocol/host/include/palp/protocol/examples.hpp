@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Example messages with known contents: the source of the golden vectors and of the round-trip
 // tests. Every message type appears at least once with every field set to a distinct,
 // non-default value ("<Name>.filled"); the messages a lab sees most also appear with realistic

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A firmware image's bytes from the files the build writes (.elf, .bin, .dfu), and its metadata
 // (image_metadata.hpp) as text: `palp-proto image FILE`, and the SDK before it flashes. Host only.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The parts of SPEC.md that are the catalogue itself, generated so the document cannot drift:
 // the message and enum tables, the stream byte-rate table, the canonical schema text and the
 // worked examples' headers, CRCs and wire bytes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Host-only text helpers for the protocol: hex, field printing, message decoding to text.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden vectors (protocol/vectors/, format in SPEC.md §11): generated from the examples by
 // `palp-proto vectors`, checked by the host tests and the firmware-side tests.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The handshake verdict in words: what a person reads when a host and a device do not match.
 #pragma once
 

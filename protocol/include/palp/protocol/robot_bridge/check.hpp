@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The parameter checks of a committed command (protocol/robot-bridge.md §6): which registers a
 // command uses, their ranges, and that every register it does not use is zero. State checks
 // (busy, faulted, not ready, heartbeat) and reachability are the bridge's, not these.

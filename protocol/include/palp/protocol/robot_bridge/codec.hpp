@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The robot bridge's register map expanded from map.hpp: enums, the block structs, and the one
 // encoder and decoder between them and Modbus register arrays (protocol/robot-bridge.md).
 // Used by the SDK's Modbus client and by the bridge emulator alike.

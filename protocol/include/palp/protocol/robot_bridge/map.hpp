@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // THE register map of the KUKA robot bridge (protocol/robot-bridge.md): defined here once, as
 // X-macros. The block structs, their encoders and decoders (codec.hpp), the register tables
 // the tests compare with robot-bridge.md, and the emulator's and the SDK's views of the map are

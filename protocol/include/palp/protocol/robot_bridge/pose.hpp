@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // KUKA's pose convention (protocol/robot-bridge.md §4), once, for the emulator and the SDK: a
 // pose is a position and the ZYX Euler angles A, B, C, with the rotation R = Rz(A) Ry(B) Rx(C)
 // (A about z, B about the new y, C about the newest x); the columns of R are the frame's x, y, z

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 package org.palp.bridge;
 
 /** The bridge's own clock (the watchdog counts on it, never on the host's). */

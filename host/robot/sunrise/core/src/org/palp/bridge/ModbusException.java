@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 package org.palp.bridge;
 
 /** A request the register store refuses, answered with a Modbus exception code (section 9.3). */

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by
 // protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run
 //   build/release-with-assertions/protocol/palp-rb-constants java --write host/robot/sunrise/core/src/org/palp/bridge/RegisterMap.java

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 package org.palp.bridge;
 
 import org.palp.bridge.RegisterMap.StatusBlock;
