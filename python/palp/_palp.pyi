@@ -4,6 +4,7 @@
 # Units: SI, in every name. Enums are their catalogue names (str).
 import builtins
 import os
+import pathlib
 from typing import Any, Callable, Optional, Sequence, Union
 
 import numpy as np
@@ -389,6 +390,30 @@ def identify(probe: Probe, settings: IdentificationSettings,
              progress: Optional[Callable[[str, float, float], None]] = None) -> IdentificationRun: ...
 def _analyze_sweep(recording: Recording) -> dict[str, Any]: ...
 
+# --- the SDK recorder (palp/recorder.hpp) -------------------------------------------------------
+class RecordProgress:
+    samples: int
+    expected_samples: int
+    samples_missing: int
+    finished: bool
+
+class RecordResult:
+    written: bool
+    csv: pathlib.Path
+    sidecar: pathlib.Path
+    samples: int
+    samples_missing: int
+    gaps: int
+    interrupted: bool
+    program: Optional[ProgramResult]
+    sidecar_written: dict[str, Any]
+
+def record(probe: Probe, out: _Path, *, duration_s: float = 0.0, rate_Hz: float = 1000.0,
+           program: Optional[Union[HoldProgram, RampProgram, SineProgram, SweepProgram]] = None,
+           zero_current: bool = False, zero_pressure: bool = False, zero_s: float = 0.5,
+           reply_timeout_s: float = 2.0, overwrite: bool = False,
+           progress: Optional[Callable[[RecordProgress], None]] = None) -> RecordResult: ...
+
 # --- recordings and the offline analysis (palp/recording.hpp) -----------------------------------
 class Recording:
     def __init__(self, columns: dict[str, Sequence[float]]) -> None: ...
@@ -444,3 +469,39 @@ def map_plan(probe: Probe, robot: Robot, rig: Rig, plan: Plan, dir: _Path,
              settings: Optional[IndentationSettings] = None,
              progress: Optional[Callable[[int, int, str], None]] = None,
              resume: bool = False) -> StiffnessMap: ...
+
+# --- surface tracing (palp/trace.hpp) ------------------------------------------------------------
+class TracePoint:
+    row: int
+    column: int
+    ok: bool
+    reason: str
+    x_m: float
+    y_m: float
+    z_m: float
+    apex_m: tuple[float, float, float]
+    normal: tuple[float, float, float]
+    tilt_rad: float
+    indentation_m: float
+    stroke_at_rest_m: float
+    detection_force_N: float
+    contact_stiffness_N_per_m: Optional[float]
+    overtravel_m: float
+
+class TracedSurface:
+    plan_name: str
+    rows: int
+    columns: int
+    tip_radius_m: float
+    contact_E_star_Pa: Optional[float]
+    points: list[TracePoint]
+    resume_index: int
+    complete: bool
+    normals_from_grid: bool
+    stopped_because: str
+
+def trace(probe: Probe, robot: Robot, rig: Rig, plan: Plan,
+          progress: Optional[Callable[[int, int], None]] = None,
+          resume: Optional[TracedSurface] = None) -> TracedSurface: ...
+def save_trace(file: _Path, surface: TracedSurface) -> None: ...
+def load_trace(file: _Path) -> TracedSurface: ...

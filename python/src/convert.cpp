@@ -40,6 +40,13 @@ bool Interrupt::poll() {
   return false;
 }
 
+void Interrupt::keep(py::error_already_set& e) {
+  if (hit_) return;  // the first interrupt is the one raised
+  e.restore();
+  PyErr_Fetch(&type_, &error_, &trace_);
+  hit_ = true;
+}
+
 void Interrupt::rethrow_if_interrupted() {
   if (!hit_) return;
   hit_ = false;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
@@ -60,8 +61,23 @@ class Interrupt {
   std::function<bool()> callback() {
     return [this] { return poll(); };
   }
+  /// Calls a Python callback from the SDK's thread (taking the GIL). Ctrl-C that lands while
+  /// Python runs it raises KeyboardInterrupt inside it: that is kept as poll()'s (the SDK then sees
+  /// cancelled() turn true and stops safely) instead of thrown through the SDK as an error; any
+  /// other exception propagates.
+  template <class... A>
+  void call(const py::object& f, A&&... args) {
+    py::gil_scoped_acquire gil;
+    try {
+      f(std::forward<A>(args)...);
+    } catch (py::error_already_set& e) {
+      if (!e.matches(PyExc_KeyboardInterrupt)) throw;
+      keep(e);
+    }
+  }
 
  private:
+  void keep(py::error_already_set& e);
   std::chrono::steady_clock::time_point last_{};
   bool hit_ = false;
   PyObject *type_ = nullptr, *error_ = nullptr, *trace_ = nullptr;

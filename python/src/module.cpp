@@ -13,6 +13,8 @@ PYBIND11_MODULE(_palp, m) {
   palp_python::bind_stream(m);
   palp_python::bind_experiments(m);
   palp_python::bind_identification(m);
+  palp_python::bind_record(m);
   palp_python::bind_analysis(m);
   palp_python::bind_robot(m);
+  palp_python::bind_trace(m);
 }
