@@ -45,10 +45,7 @@ IndentationRun indent(palp::Probe& probe, const IndentationSettings& settings, c
   Interrupt interrupt;
   palp::IndentProgressFn on_progress;
   if (!progress.is_none())
-    on_progress = [&progress](const palp::IndentProgress& p) {
-      py::gil_scoped_acquire gil;
-      progress(p);
-    };
+    on_progress = [&progress, &interrupt](const palp::IndentProgress& p) { interrupt.call(progress, p); };
   IndentationRun run;
   {
     py::gil_scoped_release release;

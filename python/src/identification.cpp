@@ -35,9 +35,8 @@ IdentificationRun identify(palp::Probe& probe, const IdentificationSettings& set
   Interrupt interrupt;
   palp::IdentifyProgressFn on_progress;
   if (!progress.is_none())
-    on_progress = [&progress](const palp::IdentifyProgress& p) {
-      py::gil_scoped_acquire gil;
-      progress(p.phase, p.fraction, p.f_Hz);
+    on_progress = [&progress, &interrupt](const palp::IdentifyProgress& p) {
+      interrupt.call(progress, p.phase, p.fraction, p.f_Hz);
     };
   IdentificationRun run;
   {

@@ -26,9 +26,8 @@ palp::StiffnessMap map_plan(palp::Probe& probe, palp::Robot& robot, const palp::
   o.resume = resume;
   o.cancelled = interrupt.callback();
   if (!progress.is_none())
-    o.progress = [&progress](const palp::MapProgress& p) {
-      py::gil_scoped_acquire gil;
-      progress(p.done, p.total, p.phase);
+    o.progress = [&progress, &interrupt](const palp::MapProgress& p) {
+      interrupt.call(progress, p.done, p.total, p.phase);
     };
   palp::StiffnessMap m;
   {
