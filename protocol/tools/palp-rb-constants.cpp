@@ -122,7 +122,8 @@ void put_block(std::ostringstream& o) {
 
 std::string generate_java() {
   std::ostringstream o;
-  o << "// GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
+  o << "// SPDX-License-Identifier: Apache-2.0\n"  // the licence line every source file carries
+       "// GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
        "// protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run\n"
        "//   "
     << regenerate("java", kJavaFile)
@@ -200,7 +201,8 @@ void put_py_block(std::ostringstream& o) {
 
 std::string generate_python() {
   std::ostringstream o;
-  o << "# GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
+  o << "# SPDX-License-Identifier: Apache-2.0\n"
+       "# GENERATED from protocol/include/palp/protocol/robot_bridge/map.hpp and check.hpp by\n"
        "# protocol/tools/palp-rb-constants.cpp. Do not edit: change map.hpp, then run\n"
        "#   "
     << regenerate("python", kPythonFile)
