@@ -14,7 +14,11 @@
 
 #include <arpa/inet.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
+#include <filesystem>
+#include <utility>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -193,5 +197,31 @@ inline unsigned unused_port() {
   ::close(fd);
   return ntohs(a.sin_port);
 }
+
+/// A test with its own palp-sim process and a scratch directory (removed afterwards) named
+/// `<prefix>-<pid>-<test name>`; run() calls palpctl against that palp-sim once it is free.
+class SimCliTest : public ::testing::Test {
+ protected:
+  explicit SimCliTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override {
+    ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (prefix_ + "-" + std::to_string(::getpid()) + "-" + info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  ProcessResult run(std::vector<std::string> args) {
+    EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
+    args.insert(args.begin(), {"--uri", sim_.uri()});
+    return palpctl(args);
+  }
+
+  std::string prefix_;
+  SimServer sim_;
+  std::filesystem::path dir_;
+};
 
 }  // namespace palpctl::test

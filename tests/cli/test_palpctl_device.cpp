@@ -19,27 +19,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class PalpctlDevice : public ::testing::Test {
+class PalpctlDevice : public SimCliTest {
  protected:
-  void SetUp() override {
-    ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("palpctl-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  ProcessResult run(std::vector<std::string> args) {
-    EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
-    args.insert(args.begin(), {"--uri", sim_.uri()});
-    return palpctl(args);
-  }
+  PalpctlDevice() : SimCliTest("palpctl") {}
   std::string out(const std::string& name) const { return (dir_ / name).string(); }
-
-  SimServer sim_;
-  fs::path dir_;
 };
 
 TEST_F(PalpctlDevice, InfoJsonNamesTheDeviceAndItsSettingsInLabUnits) {

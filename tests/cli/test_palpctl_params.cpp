@@ -19,23 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class PalpctlParams : public ::testing::Test {
+class PalpctlParams : public SimCliTest {
  protected:
-  void SetUp() override {
-    ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("palpctl-params-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  ProcessResult run(std::vector<std::string> args) {
-    EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
-    args.insert(args.begin(), {"--uri", sim_.uri()});
-    return palpctl(args);
-  }
+  PalpctlParams() : SimCliTest("palpctl-params") {}
   /// The device's parameters as `params get --json` prints them.
   json params() {
     const auto r = run({"params", "get", "--json"});
@@ -47,9 +33,6 @@ class PalpctlParams : public ::testing::Test {
     if (!text.empty()) std::ofstream(p) << text;
     return p.string();
   }
-
-  SimServer sim_;
-  fs::path dir_;
 };
 
 TEST_F(PalpctlParams, GetPrintsEveryCatalogueParameterAndNoOther) {
