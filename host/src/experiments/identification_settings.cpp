@@ -57,6 +57,17 @@ IdentificationSettings IdentificationSettings::preset(IdentificationPreset p) {
     case IdentificationPreset::contact_multisine:
       s.method = SweepMethod::multisine;
       break;
+    case IdentificationPreset::contact_multisine_fast:  // identification.hpp: the design
+      s.method = SweepMethod::multisine;
+      s.amplitude_A = 0.03;
+      s.f_lo_Hz = 2.0;
+      s.f_hi_Hz = 40.0;
+      s.fundamental_Hz = 0.25;
+      s.line_step = 2;
+      s.discard_periods = 1;
+      s.measured_periods = 3;
+      s.phase_mode = proto::PhaseMode::schroeder;
+      break;
     case IdentificationPreset::free_air:
       s.method = SweepMethod::multisine;
       s.in_contact = false;
