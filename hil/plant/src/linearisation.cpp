@@ -32,6 +32,14 @@ double net_force(const Plant& plant, const Site& site, double bias_A, double s) 
 
 std::complex<double> Linearisation::G(double f_Hz) const {
   const double w = 2.0 * std::numbers::pi * f_Hz;
+  if (k_relaxing_N_per_m > 0.0) {  // the exact dynamic stiffness: without the equivalents
+    const std::complex<double> jwt(0.0, w * relaxation_time_s);
+    const std::complex<double> d =
+        std::complex<double>(k_N_per_m - k_sls_N_per_m - m_kg * w * w,
+                             (b_N_s_per_m - b_sls_N_s_per_m) * w) +
+        k_relaxing_N_per_m * jwt / (1.0 + jwt);
+    return 1.0 / d;
+  }
   return 1.0 / std::complex<double>(k_N_per_m - m_kg * w * w, b_N_s_per_m * w);
 }
 
@@ -82,10 +90,27 @@ Linearisation linearise(const Plant& plant, double bias_A) {
     const double engage =
         p.mass_engage_depth_m > 0.0 ? std::min(1.0, depth / p.mass_engage_depth_m) : 1.0;
     r.m_o_kg = p.participating_mass_kg * engage;
+    if (p.viscoelasticity == Viscoelasticity::standard_linear_solid &&
+        p.sls_relaxation_time_s > 0.0 && p.sls_strength > 0.0) {
+      r.k_relaxing_N_per_m = p.sls_strength * el.stiffness_N_per_m;
+      r.relaxation_time_s = p.sls_relaxation_time_s;
+    }
   }
-  r.k_N_per_m = r.k_v_N_per_m + r.k_o_N_per_m + r.k_coil_N_per_m;
   r.m_kg = r.m_v_kg + r.m_o_kg;
-  r.b_N_s_per_m = r.b_v_N_s_per_m + r.b_o_N_s_per_m;
+  const double k_static = r.k_v_N_per_m + r.k_o_N_per_m + r.k_coil_N_per_m;
+  const double b_static = r.b_v_N_s_per_m + r.b_o_N_s_per_m;
+  // the standard linear solid's equivalents at omega_n: a contraction (k_sls grows slowly with w)
+  double w = std::sqrt((k_static + r.k_relaxing_N_per_m) / r.m_kg);
+  for (int iter = 0; iter < 100 && r.k_relaxing_N_per_m > 0.0; ++iter) {
+    const double wt2 = w * w * r.relaxation_time_s * r.relaxation_time_s;
+    r.k_sls_N_per_m = r.k_relaxing_N_per_m * wt2 / (1.0 + wt2);
+    r.b_sls_N_s_per_m = r.k_relaxing_N_per_m * r.relaxation_time_s / (1.0 + wt2);
+    const double next = std::sqrt((k_static + r.k_sls_N_per_m) / r.m_kg);
+    if (std::abs(next - w) <= 1e-14 * w) break;
+    w = next;
+  }
+  r.k_N_per_m = k_static + r.k_sls_N_per_m;
+  r.b_N_s_per_m = b_static + r.b_sls_N_s_per_m;
   r.omega_n_rad_per_s = std::sqrt(r.k_N_per_m / r.m_kg);
   r.zeta = r.b_N_s_per_m / (2.0 * std::sqrt(r.k_N_per_m * r.m_kg));
   return r;

@@ -42,6 +42,12 @@ PadPhantom::PadPhantom(PadPhantomSpec spec)
   if (!(std::abs(s.surface_tilt_about_y_rad) < std::numbers::pi / 4.0)) {
     throw PhantomError(name() + ": the surface tilt must be below 45 degrees");
   }
+  const PadDampingInclusion& inc = s.damping_inclusion;
+  if (inc.radius_m > 0.0 &&
+      (inc.centre_x_m - inc.radius_m < 0.0 || inc.centre_x_m + inc.radius_m > s.size_x_m ||
+       inc.centre_y_m - inc.radius_m < 0.0 || inc.centre_y_m + inc.radius_m > s.size_y_m)) {
+    throw PhantomError(name() + ": the damping inclusion runs past the pad");
+  }
   const double r = 0.5 * s.channel_diameter_m;
   const double top = top_excursion(s);
   if (s.shallow.depth_m <= r || s.deep.depth_m - top <= r ||
@@ -97,7 +103,11 @@ ContactParams PadPhantom::contact_params(double x_m, double y_m) const {
   p.sls_strength = s.sls_strength;
   p.mass_engage_depth_m = s.mass_engage_depth_m;
   p.e_star_Pa = s.e_star_Pa;
-  p.retardation_time_s = s.retardation_time_s;
+  const PadDampingInclusion& inc = s.damping_inclusion;
+  p.retardation_time_s = inc.radius_m > 0.0 && std::hypot(x_m - inc.centre_x_m,
+                                                          y_m - inc.centre_y_m) <= inc.radius_m
+                             ? inc.retardation_time_s
+                             : s.retardation_time_s;
   p.participating_mass_kg = s.participating_mass_kg;
   p.layer_thickness_m = s.thickness_m - top_z(s, x_m, y_m);
   double compliance = s.base_compliance_m_per_N;

@@ -89,7 +89,10 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
       "deep_channel_compliance_m_per_N", "deep_channel_effective_area_m2",
       "shallow_channel_columns", "shallow_channel_depth_m", "shallow_channel_length_m",
       "shallow_channel_compliance_m_per_N", "shallow_channel_effective_area_m2"};
-  const std::vector<std::string_view> optional = {"surface_tilt_about_y_deg"};
+  const std::vector<std::string_view> inclusion = {
+      "damping_inclusion_centre_x_m", "damping_inclusion_centre_y_m",
+      "damping_inclusion_radius_m", "damping_inclusion_retardation_time_s"};
+  const std::vector<std::string_view> optional = join({"surface_tilt_about_y_deg"}, inclusion);
   // clang-format on
   const char* context = "kind = pad_2d";
   f.reject_unknown(join(join(join(kCommonKeys, kSlsKeys), own), optional), context);
@@ -135,6 +138,15 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
   s.shallow.length_m = f.number("shallow_channel_length_m", 1e-3, 10.0);
   s.shallow.compliance_m_per_N = f.number("shallow_channel_compliance_m_per_N", 0.0, 1.0);
   s.shallow.effective_area_m2 = f.number("shallow_channel_effective_area_m2", 0.0, 1.0);
+  if (f.has("damping_inclusion_radius_m") || f.has("damping_inclusion_centre_x_m") ||
+      f.has("damping_inclusion_centre_y_m") || f.has("damping_inclusion_retardation_time_s")) {
+    f.require(inclusion, "a damping inclusion");  // all four keys or none
+    PadDampingInclusion& inc = s.damping_inclusion;
+    inc.centre_x_m = f.number("damping_inclusion_centre_x_m", 0.0, s.size_x_m);
+    inc.centre_y_m = f.number("damping_inclusion_centre_y_m", 0.0, s.size_y_m);
+    inc.radius_m = f.number("damping_inclusion_radius_m", 1e-4, 1.0);
+    inc.retardation_time_s = f.number("damping_inclusion_retardation_time_s", 0.0, 10.0);
+  }
   return build<PadPhantom>(f, std::move(s));
 }
 

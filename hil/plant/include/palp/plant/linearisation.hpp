@@ -13,8 +13,17 @@
 //                                       K_f table is flat, i.e. over the working range)
 //   m = m_v + m_o(delta_0)              participating mass engaged at delta_0
 //   b = b_v + tau k_o                   Kelvin-Voigt (retardation time tau)
-// and omega_n = sqrt(k / m), zeta = b / (2 sqrt(k m)). A standard linear solid is linearised
-// with its relaxed law (its dynamic stiffness depends on frequency: not a second-order system).
+// and omega_n = sqrt(k / m), zeta = b / (2 sqrt(k m)).
+//
+// A standard linear solid (strength g_1, relaxation time tau_1) adds to the contact the
+// frequency-dependent stiffness k_r j w tau_1 / (1 + j w tau_1), k_r = g_1 k_o (its extra force q
+// relaxes toward 0 while following g_1 dF_el/dt): the static equilibrium is the relaxed law's, G
+// below is exact, and k, b, omega_n, zeta are the second order that matches the dynamic
+// stiffness at its own natural frequency (solved by fixed point):
+//   k = k_v + k_o + k_r w^2 tau_1^2 / (1 + w^2 tau_1^2) - i_0 dK_f/ds,
+//   b = b_v + tau k_o + k_r tau_1 / (1 + w^2 tau_1^2),    w = omega_n = sqrt(k / m).
+// A fit of a second order over a band around the resonance finds it when w tau_1 >> 1 there
+// (the relaxing part then barely varies across the band; the pad: hil/plant/README.md).
 #pragma once
 
 #include <complex>
@@ -33,6 +42,10 @@ struct Linearisation {
   double k_v_N_per_m = 0.0, k_o_N_per_m = 0.0, k_coil_N_per_m = 0.0, k_N_per_m = 0.0;
   double m_v_kg = 0.0, m_o_kg = 0.0, m_kg = 0.0;
   double b_v_N_s_per_m = 0.0, b_o_N_s_per_m = 0.0, b_N_s_per_m = 0.0;
+  /// Standard linear solid (0 for Kelvin-Voigt): k_r = g_1 k_o and tau_1, and the stiffness and
+  /// damping the relaxing part adds at omega_n (included in k_N_per_m and b_N_s_per_m).
+  double k_relaxing_N_per_m = 0.0, relaxation_time_s = 0.0;
+  double k_sls_N_per_m = 0.0, b_sls_N_s_per_m = 0.0;
   double omega_n_rad_per_s = 0.0, zeta = 0.0;
   /// The linear model's response Z/F at f_Hz, m/N (x = Re{X e^{jwt}}: Im G <= 0).
   std::complex<double> G(double f_Hz) const;

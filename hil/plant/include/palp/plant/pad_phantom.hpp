@@ -17,6 +17,11 @@
 // Boussinesq attenuation of a point load's vertical stress integrated along a line. Channel k
 // loses dV_k = A_k c_k w(d_k, z_k) F of volume (its share of the deflection times an effective
 // area).
+//
+// Optional damping inclusion (pad_2d_damping): a vertical cylinder of the pad, a disc in (x, y),
+// whose Kelvin-Voigt retardation time differs from the bulk's while its elastic law (and the
+// standard linear solid's relaxation, if any) stays the bulk's: the same quasi-static stiffness,
+// another damping. A site inside the disc (the apex's (x, y), edge included) takes its tau.
 #pragma once
 
 #include <array>
@@ -31,6 +36,12 @@ struct PadChannelClass {
   double length_m = 0.0;            // effective length for the enclosed volume (paper §V-D)
   double compliance_m_per_N = 0.0;  // c_k: structural compliance right above the channel
   double effective_area_m2 = 0.0;   // A_k: volume lost per metre of that deflection
+};
+
+struct PadDampingInclusion {
+  double centre_x_m = 0.0, centre_y_m = 0.0;
+  double radius_m = 0.0;              // 0: no inclusion
+  double retardation_time_s = 0.0;    // Kelvin-Voigt tau inside the disc
 };
 
 struct PadPhantomSpec : MaterialSpec {
@@ -50,6 +61,7 @@ struct PadPhantomSpec : MaterialSpec {
   double tube_length_m = 0.5;
   PadChannelClass deep;     // channels 1, 2, 3
   PadChannelClass shallow;  // channels 4, 5, 6
+  PadDampingInclusion damping_inclusion;  // file keys damping_inclusion_* (optional, none)
 };
 
 class PadPhantom final : public Phantom {
