@@ -33,6 +33,8 @@ struct Site {
 constexpr Site kInsert{"insert_1d", 27, 0}, kSolid{"solid_1d", 27, 0}, kHollow{"hollow_1d", 27, 0};
 // the pad's row 5: column 4 (bulk) and column 5 (over shallow channel 5, the softest site)
 constexpr Site kPadBulk{"pad_2d", 40, 45}, kPadChannel{"pad_2d", 50, 45};
+// the same site in pad_2d_damping's inclusion (twice the retardation time, the same stiffness)
+constexpr Site kPadInclusion{"pad_2d_damping", 40, 45};
 
 /// The plant as palp-sim builds it with the mount where the floating tip (25 mm of stroke) just
 /// touches the site (the sphere's first touch), linearised at bias_A; mount_z_mm gets that z.
@@ -48,6 +50,7 @@ palp::plant::Linearisation reference(const Site& site, double bias_A, double* mo
 
 struct Errors {
   double omega_n = 1, zeta = 1;  // relative
+  double omega_n_rad_per_s = 0, zeta_measured = 0;
 };
 
 /// Identifies `site` with the fast preset and compares with the linearisation; prints the figures.
@@ -56,16 +59,19 @@ Errors fast_errors(const Site& site) {
       IdentificationSettings::preset(IdentificationPreset::contact_multisine_fast);
   double z_mm = 0;
   const auto ref = reference(site, s.bias_A, &z_mm);
-  palp::sim::InprocSimulator sim({.phantom = site.phantom, .mount_mm = {site.x_mm, site.y_mm, z_mm}});
+  palp::sim::InprocSimulator sim(
+      {.phantom = site.phantom, .mount_mm = {site.x_mm, site.y_mm, z_mm}});
   palp::Probe probe(sim.transport());
   const palp::IdentificationRun r = palp::identify(probe, s);
   EXPECT_TRUE(r.fit) << r.analysis_reason;
   if (!r.fit || !r.frf) return {};
-  const Errors e{r.fit->omega_n_rad_per_s / ref.omega_n_rad_per_s - 1, r.fit->zeta / ref.zeta - 1};
+  const Errors e{r.fit->omega_n_rad_per_s / ref.omega_n_rad_per_s - 1, r.fit->zeta / ref.zeta - 1,
+                 r.fit->omega_n_rad_per_s, r.fit->zeta};
   std::printf("%-9s (%2.0f, %2.0f) mm: omega_n %.3f rad/s (ref %.3f, %+.3f %%), zeta %.4f (ref "
               "%.4f, %+.2f %%, s.e. %.2f %%), cost %.2f, %zu lines, %.0f s device\n",
               site.phantom, site.x_mm, site.y_mm, r.fit->omega_n_rad_per_s, ref.omega_n_rad_per_s,
-              100 * e.omega_n, r.fit->zeta, ref.zeta, 100 * e.zeta, 100 * r.fit->zeta_se / r.fit->zeta,
+              100 * e.omega_n, r.fit->zeta, ref.zeta, 100 * e.zeta,
+              100 * r.fit->zeta_se / r.fit->zeta,
               r.fit->normalized_cost.value_or(-1), r.fit->lines, r.frf->device_time_s);
   EXPECT_TRUE(r.fit->adequate) << site.phantom;
   EXPECT_EQ(r.frf->device_time_s, 16.0);
@@ -97,7 +103,8 @@ TEST(IdentificationFast, BandSpansAThirdOfTheSoftestToOnePointFiveTimesTheStiffe
   const palp::proto::LoadMultisine m = s.multisine_program(kControlRate_Hz);
   const double f_first = m.line_first * s.fundamental_Hz, f_last = m.line_last * s.fundamental_Hz;
   for (const Site& site : {kInsert, kSolid, kHollow, kPadBulk, kPadChannel}) {
-    const double f_n = reference(site, s.bias_A, nullptr).omega_n_rad_per_s / (2 * std::numbers::pi);
+    const double f_n =
+        reference(site, s.bias_A, nullptr).omega_n_rad_per_s / (2 * std::numbers::pi);
     std::printf("%-9s (%2.0f, %2.0f) mm: f_n %.2f Hz\n", site.phantom, site.x_mm, site.y_mm, f_n);
     EXPECT_LT(f_first, f_n / 2.9) << site.phantom;
     EXPECT_GT(f_last, 1.5 * f_n) << site.phantom;
@@ -120,6 +127,16 @@ TEST(IdentificationFast, PadAtItsOperatingPointMatchesTheLinearisationOverBulkAn
     EXPECT_LT(std::fabs(e.omega_n), 0.005) << site.phantom << " x " << site.x_mm;
     EXPECT_LT(std::fabs(e.zeta), 0.05) << site.phantom << " x " << site.x_mm;
   }
+}
+
+TEST(IdentificationFast, DampingInclusionShowsInZetaAndNotInOmegaN) {
+  if (kSanitized) GTEST_SKIP() << "two 16 s multisines: the release build runs them";
+  const Errors pad = fast_errors(kPadBulk), inclusion = fast_errors(kPadInclusion);
+  EXPECT_LT(std::fabs(inclusion.omega_n), 0.005);
+  EXPECT_LT(std::fabs(inclusion.zeta), 0.05);
+  // the linearisation's ratio is 1.81 (tests/plant/test_pad_viscoelastic.cpp)
+  EXPECT_GT(inclusion.zeta_measured / pad.zeta_measured, 1.7);
+  EXPECT_NEAR(inclusion.omega_n_rad_per_s, pad.omega_n_rad_per_s, 0.005 * pad.omega_n_rad_per_s);
 }
 
 }  // namespace
