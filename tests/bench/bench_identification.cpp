@@ -73,7 +73,8 @@ void identify(benchmark::State& state, palp::IdentificationPreset preset) {
   state.counters["amplitude_mA"] = 1e3 * s.amplitude_A;
   state.counters["lines"] = static_cast<double>(run.frf->lines.size());
   state.counters["omega_n_rad_per_s"] = run.fit->omega_n_rad_per_s;
-  state.counters["omega_n_err_pct"] = 100 * (run.fit->omega_n_rad_per_s / ref.omega_n_rad_per_s - 1);
+  state.counters["omega_n_err_pct"] =
+      100 * (run.fit->omega_n_rad_per_s / ref.omega_n_rad_per_s - 1);
   state.counters["zeta"] = run.fit->zeta;
   state.counters["zeta_err_pct"] = 100 * (run.fit->zeta / ref.zeta - 1);
   state.counters["zeta_se_pct"] = 100 * run.fit->zeta_se / run.fit->zeta;
