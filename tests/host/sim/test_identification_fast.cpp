@@ -139,5 +139,25 @@ TEST(IdentificationFast, DampingInclusionShowsInZetaAndNotInOmegaN) {
   EXPECT_NEAR(inclusion.omega_n_rad_per_s, pad.omega_n_rad_per_s, 0.005 * pad.omega_n_rad_per_s);
 }
 
+TEST(IdentificationFast, RunReanalysedFromItsSidecarGivesTheSameFitWithSchroederPhases) {
+  if (kSanitized) GTEST_SKIP() << "a 16 s multisine: the release build runs it";
+  const IdentificationSettings s =
+      IdentificationSettings::preset(IdentificationPreset::contact_multisine_fast);
+  double z_mm = 0;
+  (void)reference(kPadChannel, s.bias_A, &z_mm);
+  palp::sim::InprocSimulator sim(
+      {.phantom = kPadChannel.phantom, .mount_mm = {kPadChannel.x_mm, kPadChannel.y_mm, z_mm}});
+  palp::Probe probe(sim.transport());
+  const palp::IdentificationRun r = palp::identify(probe, s);
+  ASSERT_TRUE(r.fit) << r.analysis_reason;
+  palp::IdentificationRun again = palp::identification_run_of(r.recording);
+  EXPECT_EQ(again.settings.phase_mode, palp::proto::PhaseMode::schroeder);
+  EXPECT_EQ(again.multisine, r.multisine);
+  palp::analyze_identification(again);
+  ASSERT_TRUE(again.fit) << again.analysis_reason;
+  EXPECT_DOUBLE_EQ(again.fit->omega_n_rad_per_s, r.fit->omega_n_rad_per_s);
+  EXPECT_DOUBLE_EQ(again.fit->zeta, r.fit->zeta);
+}
+
 }  // namespace
 }  // namespace identification_fast

@@ -73,7 +73,8 @@ TEST(SettingsFinite, IndentationSettingsNameEveryNonFiniteFieldAnalysisIncluded)
 
 TEST(SettingsFinite, IdentificationSettingsNameEveryNonFiniteField) {
   using S = palp::IdentificationSettings;
-  for (const auto preset : {palp::IdentificationPreset::contact_stepped, palp::IdentificationPreset::contact_multisine}) {
+  for (const auto preset : {palp::IdentificationPreset::contact_stepped, palp::IdentificationPreset::contact_multisine,
+                            palp::IdentificationPreset::contact_multisine_fast}) {
     const S s = S::preset(preset);
     expect_named<S>(s, "identification settings",
                     {{"bias_A", [](S& x) -> double& { return x.bias_A; }},
