@@ -51,7 +51,7 @@ const char* sweep_method_name(SweepMethod m);  ///< "stepped", "multisine"
 /// free_air: bias at the float current 0.5 A, 0.01 A, 1-10 Hz, multisine.
 /// contact_multisine_fast (issue 24, a dynamic map's point): 16 s of program at 1.0 A, omega_n
 /// within 0.5 % and zeta within 5 % of the plant's linearisation on palp-sim's 1D objects
-/// (resonances 6.7-12.5 Hz) and the pad (18-25 Hz): 4 s periods (0.25 Hz harmonics; the
+/// (resonances 6.7-12.5 Hz) and the pad (19.6-24.6 Hz): 4 s periods (0.25 Hz harmonics; the
 /// dropped period is 22 of the slowest contact transient's time constants, 1 / (zeta omega_n) =
 /// 0.18 s on the hollow), 1 dropped + 3 measured (the period-to-period sigma);
 /// the odd harmonics 9-159 (2.25-39.75 Hz, 76 lines 0.5 Hz apart, 3-4 in the hollow's 1.8 Hz
