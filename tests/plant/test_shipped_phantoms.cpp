@@ -42,7 +42,7 @@ TEST(ShippedPhantoms, AnotherNameIsRefusedNamingTheShippedOnes) {
   } catch (const PhantomError& e) {
     EXPECT_STREQ(e.what(),
                  "no shipped phantom \"soft_1d\" (the shipped ones: hollow_1d, insert_1d, pad_2d, "
-                 "pad_2d_damping, pad_2d_steep, plane_tilted_10, solid_1d)");
+                 "pad_2d_damping, pad_2d_steep, plane_tilted_10, solid_1d, wedge_0, wedge_25)");
   }
 }
 

@@ -101,6 +101,9 @@ TEST(SimulationReference, SolidAtPosition3At40kHzMatchesTheRecordedRun) {
   EXPECT_EQ(r.state_hash, 6158378617586670245u);
 }
 
+// Re-pinned with issue 24's oblique contact (hil/plant/README.md "Oblique contact"): row 8,
+// column 8 lies on a 6 degree flank of the pad's waves, so the vertical probe now meets the law
+// at theta = 6 degrees (0.36 % softer); with theta forced to 0 the old hashes reproduce.
 TEST(SimulationReference, PadWithPressureChannelsAt20kHzMatchesTheRecordedRun) {
   const Fingerprint r = run_scenario("pad_2d", 0.080, 0.075, 20000, 7, kMs);
   EXPECT_GT(r.contact_force_N, 0.5);

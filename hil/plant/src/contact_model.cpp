@@ -17,7 +17,28 @@ void ContactModel::reset() {
 
 ContactModel::Output ContactModel::evaluate(const ContactParams& params, double radius_m,
                                             double depth_m, double depth_rate_m_per_s,
-                                            double dt_s) {
+                                            double dt_s, double cos_theta) {
+  if (cos_theta == 1.0) return evaluate_normal(params, radius_m, depth_m, depth_rate_m_per_s, dt_s);
+  // Oblique axis: the law runs on the normal approach (a Kelvin-Voigt or SLS solid scales its
+  // moduli, not nu, so Mindlin's split holds for the rate terms too: one factor for all).
+  const ObliqueSplit split = oblique_split(cos_theta, params.friction_coefficient);
+  Output out = evaluate_normal(params, radius_m, depth_m * split.cos_theta,
+                               depth_rate_m_per_s * split.cos_theta, dt_s);
+  const double g = split.axial_per_normal;  // axial force per normal force
+  const double gc = g * split.cos_theta;    // axial stiffness per normal stiffness
+  out.force_N *= g;
+  out.elastic_force_N *= g;
+  out.rate_free_force_N *= g;
+  out.stiffness_N_per_m *= gc;
+  out.damping_N_s_per_m *= gc;
+  out.axial_per_normal = g;
+  out.tangential_per_normal = split.tangential_per_normal;
+  return out;
+}
+
+ContactModel::Output ContactModel::evaluate_normal(const ContactParams& params, double radius_m,
+                                                   double depth_m, double depth_rate_m_per_s,
+                                                   double dt_s) {
   Output out;
   const bool touching = depth_m > 0.0;
   if (touching) {

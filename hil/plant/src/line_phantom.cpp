@@ -13,7 +13,7 @@ double inverse_or_zero(double h) { return h > 0.0 ? 1.0 / h : 0.0; }
 }  // namespace
 
 LinePhantom::LinePhantom(LinePhantomSpec spec)
-    : Phantom(spec.name, PhantomKind::line_1d), spec_(std::move(spec)) {
+    : Phantom(spec, PhantomKind::line_1d), spec_(std::move(spec)) {
   const std::size_t n = spec_.e_star_Pa.size();
   if (n == 0 || spec_.layer_thickness_m.size() != n ||
       spec_.structural_compliance_m_per_N.size() != n || spec_.participating_mass_kg.size() != n ||

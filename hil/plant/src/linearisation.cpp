@@ -13,7 +13,8 @@ namespace {
 
 struct Site {
   bool touches = false;
-  double gap_offset_m = 0.0;  // delta = s + gap_offset
+  double gap_offset_m = 0.0;  // delta = s + gap_offset, along the probe's axis
+  double cos_theta = 1.0;     // the axis against the surface normal (README.md "Oblique contact")
 };
 
 // Net force on the coil at rest at stroke s (positive toward +z), with the relaxed contact law.
@@ -23,7 +24,9 @@ double net_force(const Plant& plant, const Site& site, double bias_A, double s) 
              m.spring_rate_N_per_m * (s - plant.spring_neutral_m()) +
              m.moving_mass_kg * m.gravity_m_per_s2 * m.gravity_axis_cosine;
   if (site.touches) {
-    f -= elastic_contact(plant.contact_params(), m.tip_radius_m, s + site.gap_offset_m).force_N;
+    f -= oblique_elastic_contact(plant.contact_params(), m.tip_radius_m, s + site.gap_offset_m,
+                                 site.cos_theta)
+             .force_N;
   }
   return f;
 }
@@ -50,7 +53,10 @@ Linearisation linearise(const Plant& plant, double bias_A) {
   Site site;
   if (plant.phantom() && touch.touches && std::isfinite(touch.apex_z_m)) {
     site.touches = true;
-    site.gap_offset_m = (plant.tip_z_m() - plant.position_m()) - touch.apex_z_m;
+    const double axis_z = plant.probe_axis()[2];
+    site.gap_offset_m =
+        ((plant.tip_z_m() - plant.position_m() * axis_z) - touch.apex_z_m) / axis_z;
+    site.cos_theta = plant.axis_normal_cosine();
   }
 
   // The net force falls with s (springs, contact; K_f's slope times the current stays below
@@ -81,14 +87,15 @@ Linearisation linearise(const Plant& plant, double bias_A) {
   const double depth = s0 + site.gap_offset_m;
   if (site.touches && depth > 0.0) {
     const ContactParams& p = plant.contact_params();
-    const ElasticPoint el = elastic_contact(p, m.tip_radius_m, depth);
+    const ElasticPoint el = oblique_elastic_contact(p, m.tip_radius_m, depth, site.cos_theta);
     r.in_contact = true;
     r.depth_m = depth;
     r.contact_force_N = el.force_N;
     r.k_o_N_per_m = el.stiffness_N_per_m;
     r.b_o_N_s_per_m = p.retardation_time_s * el.stiffness_N_per_m;
+    const double normal_depth = depth * site.cos_theta;
     const double engage =
-        p.mass_engage_depth_m > 0.0 ? std::min(1.0, depth / p.mass_engage_depth_m) : 1.0;
+        p.mass_engage_depth_m > 0.0 ? std::min(1.0, normal_depth / p.mass_engage_depth_m) : 1.0;
     r.m_o_kg = p.participating_mass_kg * engage;
     if (p.viscoelasticity == Viscoelasticity::standard_linear_solid &&
         p.sls_relaxation_time_s > 0.0 && p.sls_strength > 0.0) {

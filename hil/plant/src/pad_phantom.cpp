@@ -33,7 +33,7 @@ double top_excursion(const PadPhantomSpec& s) {
 }  // namespace
 
 PadPhantom::PadPhantom(PadPhantomSpec spec)
-    : Phantom(spec.name, PhantomKind::pad_2d), spec_(std::move(spec)) {
+    : Phantom(spec, PhantomKind::pad_2d), spec_(std::move(spec)) {
   const PadPhantomSpec& s = spec_;
   const double span = static_cast<double>(s.grid_count - 1) * s.grid_pitch_m;
   if (s.grid_inset_x_m + span > s.size_x_m || s.grid_inset_y_m + span > s.size_y_m) {

@@ -14,6 +14,7 @@ namespace {
 const std::vector<std::string_view> kCommonKeys = {
     "format_version", "kind", "name", "contact_law", "viscoelasticity", "mass_engage_depth_m"};
 const std::vector<std::string_view> kSlsKeys = {"sls_relaxation_time_s", "sls_strength"};
+const std::vector<std::string_view> kOptionalCommonKeys = {"friction_coefficient"};
 
 std::vector<std::string_view> join(std::vector<std::string_view> a,
                                    const std::vector<std::string_view>& b) {
@@ -35,6 +36,9 @@ void read_common(const KeyValueFile& f, std::string_view context, MaterialSpec& 
   if (f.has("sls_relaxation_time_s")) c.sls_relaxation_time_s = f.number("sls_relaxation_time_s", 1e-6, 1e6);
   if (f.has("sls_strength")) c.sls_strength = f.number("sls_strength", 0.0, 100.0);
   c.mass_engage_depth_m = f.number("mass_engage_depth_m", 0.0, 0.1);
+  if (f.has("friction_coefficient")) {
+    c.friction_coefficient = f.number("friction_coefficient", 0.0, 10.0);
+  }
 }
 
 // Construct, reporting the class's consistency errors at the file's "kind" line.
@@ -57,7 +61,7 @@ std::shared_ptr<const Phantom> read_line_phantom(const KeyValueFile& f) {
       "participating_mass_kg", "retardation_time_s"};
   // clang-format on
   const char* context = "kind = line_1d";
-  f.reject_unknown(join(join(kCommonKeys, kSlsKeys), own), context);
+  f.reject_unknown(join(join(join(kCommonKeys, kSlsKeys), kOptionalCommonKeys), own), context);
   f.require(own, context);
   LinePhantomSpec s;
   read_common(f, context, s);
@@ -95,7 +99,8 @@ std::shared_ptr<const Phantom> read_pad_phantom(const KeyValueFile& f) {
   const std::vector<std::string_view> optional = join({"surface_tilt_about_y_deg"}, inclusion);
   // clang-format on
   const char* context = "kind = pad_2d";
-  f.reject_unknown(join(join(join(kCommonKeys, kSlsKeys), own), optional), context);
+  const auto common = join(join(kCommonKeys, kSlsKeys), kOptionalCommonKeys);
+  f.reject_unknown(join(join(common, own), optional), context);
   f.require(own, context);
   PadPhantomSpec s;
   read_common(f, context, s);

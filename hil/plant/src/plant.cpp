@@ -69,58 +69,133 @@ Plant::Plant(PlantConfig config, std::shared_ptr<const Phantom> phantom)
 }
 
 void Plant::refresh_site() {
-  if (phantom_) {
-    apex_surface_z_m_ = phantom_->surface_z_m(mount_x_m_, mount_y_m_);
-    params_ = phantom_->contact_params(mount_x_m_, mount_y_m_);
+  if (phantom_ && vertical_) {
+    apex_surface_z_m_ = phantom_->surface_z_m(site_x_m_, site_y_m_);
+    params_ = phantom_->contact_params(site_x_m_, site_y_m_);
+    params_.friction_coefficient = phantom_->friction_coefficient();
+  } else if (phantom_) {
+    // the law where the axis crosses the surface
+    const double t = surface_along_axis_m(*phantom_, site_x_m_, site_y_m_, axis_);
+    apex_surface_z_m_ = t * axis_[2];
+    params_ = std::isfinite(t) ? phantom_->contact_params(site_x_m_ + t * axis_[0],
+                                                          site_y_m_ + t * axis_[1])
+                               : phantom_->contact_params(site_x_m_, site_y_m_);
+    params_.friction_coefficient = phantom_->friction_coefficient();
   } else {
     apex_surface_z_m_ = std::numeric_limits<double>::infinity();
     params_ = ContactParams{};
   }
   surface_z_m_ = apex_surface_z_m_;
   touch_valid_ = false;
+  cos_theta_ = 1.0;
 }
 
 void Plant::ensure_touch() {
   if (touch_valid_ || !phantom_ || !std::isfinite(apex_surface_z_m_)) return;
   const double r = config_.mechanics.tip_radius_m;
-  if (mount_z_m_ + s_m_ < apex_surface_z_m_ - r - kTouchMargin_m) return;  // far above
-  const double dx = mount_x_m_ - searched_.x_m, dy = mount_y_m_ - searched_.y_m;
+  if (tip_z_m() < apex_surface_z_m_ - r - kTouchMargin_m) return;  // far above
+  const double dx = site_x_m_ - searched_.x_m, dy = site_y_m_ - searched_.y_m;
   if (searched_.valid && std::hypot(dx, dy) < kTouchReuse_m) {
     // A sub-micrometre move (the arm's rounding jitter, a slow slide): the touch moves with the
-    // surface's tangent plane at the touched point, z += -(n_x dx + n_y dy) / n_z; the error is
-    // curvature x d^2 / 2 < 1e-10 m.
+    // surface's tangent plane at the touched point. Vertical: z += -(n_x dx + n_y dy) / n_z; along
+    // a tilted axis the line moves by d = (dx, dy, 0) and the touch by d + lambda a, lambda =
+    // -(n . d) / (n . a). The error is curvature x d^2 / 2 < 1e-10 m.
     touch_ = searched_.touch;
     const auto& n = touch_.normal;
-    const double dz = -(n[0] * dx + n[1] * dy) / n[2];
+    double px = dx, py = dy, dz = 0.0;
+    if (vertical_) {
+      dz = -(n[0] * dx + n[1] * dy) / n[2];
+    } else {
+      const double lambda = -(n[0] * dx + n[1] * dy) /
+                            (n[0] * axis_[0] + n[1] * axis_[1] + n[2] * axis_[2]);
+      px += lambda * axis_[0];
+      py += lambda * axis_[1];
+      dz = lambda * axis_[2];
+    }
     touch_.apex_z_m += dz;
-    touch_.point_x_m += dx;
-    touch_.point_y_m += dy;
+    touch_.point_x_m += px;
+    touch_.point_y_m += py;
     touch_.point_z_m += dz;
   } else {
-    touch_ = sphere_touch(*phantom_, mount_x_m_, mount_y_m_, r);
-    searched_ = {touch_.touches, mount_x_m_, mount_y_m_, touch_};
+    touch_ = vertical_ ? sphere_touch(*phantom_, site_x_m_, site_y_m_, r)
+                       : sphere_touch_along(*phantom_, site_x_m_, site_y_m_, axis_, r);
+    searched_ = {touch_.touches, site_x_m_, site_y_m_, touch_};
   }
   touch_valid_ = true;
   surface_z_m_ = touch_.apex_z_m;
+  const auto& n = touch_.normal;
+  cos_theta_ = touch_.touches
+                   ? std::clamp(axis_[0] * n[0] + axis_[1] * n[1] + axis_[2] * n[2], 0.0, 1.0)
+                   : 1.0;
+}
+
+double Plant::axis_normal_cosine() const {
+  if (touch_valid_) return cos_theta_;
+  const SphereTouch t = site_touch();
+  if (!t.touches) return 1.0;
+  return std::clamp(axis_[0] * t.normal[0] + axis_[1] * t.normal[1] + axis_[2] * t.normal[2],
+                    0.0, 1.0);
+}
+
+std::array<double, 3> Plant::contact_force_vector_N() const {
+  std::array<double, 3> f{0.0, 0.0, 0.0};
+  if (!(contact_.force_N > 0.0) || !touch_valid_) return f;
+  const double fn = normal_contact_force_N(), ft = tangential_contact_force_N();
+  const auto& n = touch_.normal;
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta_ * cos_theta_));
+  for (int i = 0; i < 3; ++i) {
+    const double t = sin_theta > 0.0 ? (axis_[i] - n[i] * cos_theta_) / sin_theta : 0.0;
+    f[i] = -(fn * n[i] + ft * t);
+  }
+  return f;
+}
+
+void Plant::set_probe_axis(const std::array<double, 3>& axis) {
+  const double norm = std::hypot(axis[0], axis[1], axis[2]);
+  if (!(std::abs(norm - 1.0) <= 1e-9) || !(axis[2] > 0.0)) {
+    throw std::invalid_argument(
+        "Plant::set_probe_axis: the axis must be a unit vector with z > 0");
+  }
+  std::array<double, 3> a = {axis[0] / norm, axis[1] / norm, axis[2] / norm};
+  if (std::hypot(a[0], a[1]) < 1e-12) a = {0.0, 0.0, 1.0};
+  if (a == axis_) return;
+  axis_ = a;
+  vertical_ = a[0] == 0.0 && a[1] == 0.0 && a[2] == 1.0;
+  site_dirty_ = true;
+  searched_.valid = false;
+}
+
+void Plant::set_gravity_axis_cosine(double cosine) {
+  if (!(std::abs(cosine) <= 1.0)) {
+    throw std::invalid_argument("Plant::set_gravity_axis_cosine: a cosine lies in [-1, 1]");
+  }
+  config_.mechanics.gravity_axis_cosine = cosine;
 }
 
 SphereTouch Plant::site_touch() const {
   if (touch_valid_) return touch_;
   if (!phantom_) return SphereTouch{false, std::numeric_limits<double>::infinity()};
-  return sphere_touch(*phantom_, mount_x_m_, mount_y_m_, config_.mechanics.tip_radius_m);
+  const double r = config_.mechanics.tip_radius_m;
+  return vertical_ ? sphere_touch(*phantom_, site_x_m_, site_y_m_, r)
+                   : sphere_touch_along(*phantom_, site_x_m_, site_y_m_, axis_, r);
 }
 
 void Plant::set_mount(double x_m, double y_m, double z_m) {
   move_mount(x_m, y_m, z_m);
   ensure_touch();
-  gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
+  gap_offset_prev_m_ = gap_offset();
   update_contact(0.0, 0.0);  // the tip now sits at the new depth, with no speed from the move
 }
 
 void Plant::move_mount(double x_m, double y_m, double z_m) {
-  if (x_m != mount_x_m_ || y_m != mount_y_m_ || site_dirty_) {
-    mount_x_m_ = x_m;
-    mount_y_m_ = y_m;
+  // the site is the axis line, named by its crossing of z = 0 (the mount's x, y when vertical)
+  const double sx = vertical_ ? x_m : x_m - z_m / axis_[2] * axis_[0];
+  const double sy = vertical_ ? y_m : y_m - z_m / axis_[2] * axis_[1];
+  mount_x_m_ = x_m;
+  mount_y_m_ = y_m;
+  if (sx != site_x_m_ || sy != site_y_m_ || site_dirty_) {
+    site_x_m_ = sx;
+    site_y_m_ = sy;
     refresh_site();
     site_dirty_ = false;
   }
@@ -134,17 +209,25 @@ void Plant::reset_state(const CoilState& state) {
   current_A_ = state.current_A;
   contact_model_.reset();
   ensure_touch();
-  gap_offset_prev_m_ = mount_z_m_ - surface_z_m_;
+  gap_offset_prev_m_ = gap_offset();
   update_contact(0.0, 0.0);
 }
 
-double Plant::depth_now() const { return mount_z_m_ + s_m_ - surface_z_m_; }
+double Plant::depth_now() const {
+  if (vertical_) return mount_z_m_ + s_m_ - surface_z_m_;
+  return (tip_z_m() - surface_z_m_) / axis_[2];
+}
+
+double Plant::gap_offset() const {
+  if (vertical_) return mount_z_m_ - surface_z_m_;
+  return (mount_z_m_ - surface_z_m_) / axis_[2];
+}
 
 double Plant::indentation_m() const { return std::max(0.0, depth_now()); }
 
 void Plant::update_contact(double dt_s, double mount_rate_m_per_s) {
   contact_ = contact_model_.evaluate(params_, config_.mechanics.tip_radius_m, depth_now(),
-                                     v_m_per_s_ + mount_rate_m_per_s, dt_s);
+                                     v_m_per_s_ + mount_rate_m_per_s, dt_s, cos_theta_);
 }
 
 void Plant::step(double dt_s, double v_coil_V) {
@@ -193,7 +276,7 @@ void Plant::step(double dt_s, double v_coil_V) {
 
   // Contact at the end of the step; the mount's motion over the step counts as speed.
   ensure_touch();
-  const double offset = mount_z_m_ - surface_z_m_;
+  const double offset = gap_offset();
   double mount_rate = 0.0;
   if (std::isfinite(offset) && std::isfinite(gap_offset_prev_m_)) {
     mount_rate = (offset - gap_offset_prev_m_) / dt_s;
@@ -264,7 +347,7 @@ double Plant::channel_pressure_Pa(int channel) const {
     throw std::out_of_range("pressure channel must be 1..6");
   }
   if (!phantom_ || phantom_->pressure_channel_count() == 0) return 0.0;
-  return phantom_->channel_pressures_Pa(params_, contact_.force_N)[channel - 1];
+  return phantom_->channel_pressures_Pa(params_, normal_contact_force_N())[channel - 1];
 }
 
 std::uint16_t Plant::pressure_adc(int channel) const {
@@ -274,7 +357,7 @@ std::uint16_t Plant::pressure_adc(int channel) const {
 std::array<std::uint16_t, kPressureChannels> Plant::pressure_adcs() const {
   std::array<double, kPressureChannels> p{};
   if (phantom_ && phantom_->pressure_channel_count() != 0) {
-    p = phantom_->channel_pressures_Pa(params_, contact_.force_N);
+    p = phantom_->channel_pressures_Pa(params_, normal_contact_force_N());
   }
   std::array<std::uint16_t, kPressureChannels> codes{};
   if (!(config_.sensors.pressure_noise_Pa > 0.0)) {

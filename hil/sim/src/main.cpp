@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "palp/plant/phantom.hpp"
 #include "palp/sim/byte_server.hpp"
 #include "palp/sim/control.hpp"
 #include "palp/sim/instrument.hpp"
@@ -94,8 +95,10 @@ int main(int argc, char** argv) {
   app.add_option("--unix", o.unix_path, "serve the device protocol on this Unix socket instead");
   app.add_option("--control-port", o.control_port, "TCP port of the control channel (0: free)")
       ->capture_default_str();
-  app.add_option("--phantom", o.phantom,
-                 "specimen under the probe: none, hollow_1d, solid_1d, insert_1d, pad_2d")
+  std::string phantoms = "specimen under the probe: none";  // and every shipped phantom
+  for (const std::string_view name : palp::plant::shipped_phantom_names())
+    phantoms += ", " + std::string(name);
+  app.add_option("--phantom", o.phantom, phantoms)
       ->capture_default_str();
   app.add_option("--mount-mm", o.mount_mm,
                  "probe mount x y z in mm: the tip at the stroke origin, phantom frame")

@@ -36,6 +36,9 @@ struct MaterialSpec {
   double sls_relaxation_time_s = 0.0;
   double sls_strength = 0.0;
   double mass_engage_depth_m = 1e-3;
+  /// Coulomb friction of the tip on the material (optional key friction_coefficient; README.md
+  /// "Oblique contact" has the default's source).
+  double friction_coefficient = ContactParams{}.friction_coefficient;
 };
 
 /// A named probing site in the phantom frame (1D: position k; pad: row r, column c).
@@ -67,6 +70,9 @@ class Phantom {
   /// Pad grid point (row, column), 1-based; throws std::out_of_range if there is none.
   ProbeSite grid_point(int row, int column) const;
 
+  /// Coulomb friction coefficient of the tip on the material (MaterialSpec).
+  double friction_coefficient() const { return friction_coefficient_; }
+
   /// Number of sealed pressure channels (0 or 6).
   virtual int pressure_channel_count() const { return 0; }
 
@@ -77,11 +83,13 @@ class Phantom {
                                                                      double contact_force_N) const;
 
  protected:
-  Phantom(std::string name, PhantomKind kind) : name_(std::move(name)), kind_(kind) {}
+  Phantom(const MaterialSpec& material, PhantomKind kind)
+      : name_(material.name), kind_(kind), friction_coefficient_(material.friction_coefficient) {}
 
  private:
   std::string name_;
   PhantomKind kind_;
+  double friction_coefficient_;
 };
 
 /// Parse phantom text; source_name names it in error messages. Throws PhantomError.
@@ -92,7 +100,7 @@ std::shared_ptr<const Phantom> load_phantom(const std::filesystem::path& file);
 
 /// The shipped phantoms (hil/plant/phantoms/*.phantom, built into the library as text, so an
 /// installed library needs no path to them): "hollow_1d", "insert_1d", "pad_2d", "pad_2d_steep",
-/// "plane_tilted_10", "solid_1d".
+/// "plane_tilted_10", "solid_1d", "wedge_0", "wedge_25".
 std::vector<std::string_view> shipped_phantom_names();
 /// A shipped phantom's text; PhantomError naming the shipped ones for another name.
 std::string_view shipped_phantom_text(std::string_view name);
@@ -120,5 +128,20 @@ struct SphereTouch {
 /// best point is the apex itself (a flat top) z_touch equals z_s(x, y) exactly.
 /// Throws std::invalid_argument if radius_m <= 0.
 SphereTouch sphere_touch(const Phantom& phantom, double x_m, double y_m, double radius_m);
+
+/// The same for a probe whose axis is the unit vector `axis` (phantom frame, axis z > 0): the
+/// sphere moves along the line through (x_m, y_m, 0) in that direction. The disc is searched
+/// across the axis and each of its points' lines is met with the surface by Newton; apex_z_m is
+/// the apex's z at first touch (its depth along the axis is (z_tip - apex_z_m) / axis_z), the
+/// normal points into the specimen. axis = (0, 0, 1) is sphere_touch(phantom, x_m, y_m, R)
+/// exactly. Throws std::invalid_argument for a radius <= 0 or an axis that is not a unit vector
+/// with z > 0.
+SphereTouch sphere_touch_along(const Phantom& phantom, double x_m, double y_m,
+                               const std::array<double, 3>& axis, double radius_m);
+
+/// Where the axis line through (x_m, y_m, 0) along `axis` crosses the surface: its parameter t
+/// (the point (x, y, 0) + t axis), +infinity where there is none; surface_z_m for a vertical axis.
+double surface_along_axis_m(const Phantom& phantom, double x_m, double y_m,
+                            const std::array<double, 3>& axis);
 
 }  // namespace palp::plant

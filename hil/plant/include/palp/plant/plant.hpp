@@ -8,12 +8,15 @@
 //                                             velocity Verlet, damping by the trapezoidal rule
 //                                             (second order; one contact evaluation per step)
 //   end stops: inelastic kinematic limits at stroke_min and stroke_max.
-// The tip apex sits at z_tip = z_mount + s in the phantom frame; delta = z_tip - z_touch(x, y),
-// where z_touch is the apex height at which the spherical tip first touches the surface (on a
-// slope the sphere touches off-axis, above z_s under the apex: sphere_touch in phantom.hpp).
-// z_touch is computed when the site (x, y) changes and the tip is within R + 0.5 mm above the
-// surface under the apex (z_s(x, y) stands in farther out, where nothing touches for slopes up
-// to 60 degrees; an apex off the footprint touches nothing).
+// The tip apex sits at mount + s a in the phantom frame, a the probe's axis (default (0, 0, 1));
+// the depth along the axis is delta = (z_tip - z_touch) / a_z, where z_touch is the apex's z at
+// which the spherical tip moving along the axis first touches the surface (on a slope the sphere
+// touches off-axis: sphere_touch / sphere_touch_along in phantom.hpp). z_touch is computed when
+// the site (the axis line, named by its crossing of z = 0) changes and the tip is within
+// R + 0.5 mm above the surface on the axis (that crossing stands in farther out, where nothing
+// touches for slopes up to 60 degrees; an axis off the footprint touches nothing). The contact
+// law is taken along the axis at theta to the touched point's normal (README.md "Oblique
+// contact": the normal law at delta cos(theta) plus Mindlin's tangential force).
 // No allocation per step; sensor reads draw counter-based noise keyed by the tick number.
 #pragma once
 
@@ -50,6 +53,14 @@ class Plant {
   void move_mount(double x_m, double y_m, double z_m);
   /// Put the coil in a given state (tests, ring-down); the contact memory is reset.
   void reset_state(const CoilState& state);
+  /// The probe's axis (the coil's +stroke direction), a unit vector in the phantom frame with
+  /// z > 0; default (0, 0, 1). Takes effect with the next move_mount / set_mount. An axis within
+  /// 1e-12 of (0, 0, 1) is taken as exactly that. Throws std::invalid_argument unless the
+  /// length is 1 within 1e-9 and z > 0.
+  void set_probe_axis(const std::array<double, 3>& axis);
+  /// cos(angle between gravity and the probe's axis), 1 = pointing down: the coil's weight along
+  /// its stroke. The spring preload stays the one set up vertically. Throws for |c| > 1.
+  void set_gravity_axis_cosine(double cosine);
 
   // --- time --------------------------------------------------------------------------------
   /// Advance by dt_s (10-100 us) with average coil voltage v_coil_V (the PWM duty times the
@@ -80,7 +91,22 @@ class Plant {
   double contact_force_N() const { return contact_.force_N; }
   double elastic_contact_force_N() const { return contact_.elastic_force_N; }
   double indentation_m() const;  // max(0, delta)
-  double tip_z_m() const { return mount_z_m_ + s_m_; }
+  double tip_z_m() const { return mount_z_m_ + s_m_ * axis_[2]; }
+  const std::array<double, 3>& probe_axis() const { return axis_; }
+  /// The mount: the tip apex at stroke origin, phantom frame.
+  std::array<double, 3> mount_m() const { return {mount_x_m_, mount_y_m_, mount_z_m_}; }
+  /// cos(theta) between the probe's axis and the surface normal at the site's first touch
+  /// (1: along the normal, and in free air).
+  double axis_normal_cosine() const;
+  /// The contact force's parts: normal to the surface at the touched point and tangential
+  /// (Mindlin / Coulomb); contact_force_N() is their sum along the axis.
+  double normal_contact_force_N() const { return contact_.force_N / contact_.axial_per_normal; }
+  double tangential_contact_force_N() const {
+    return normal_contact_force_N() * contact_.tangential_per_normal;
+  }
+  /// The force of the material on the tip, phantom frame: -(F_n n + F_t t), n the normal at the
+  /// touched point, t the axis's direction in the tangent plane (zero out of contact).
+  std::array<double, 3> contact_force_vector_N() const;
   double channel_pressure_Pa(int channel) const;  // true gauge pressure, paper channel 1..6
   /// Where the tip at the current mount (x, y) first touches the phantom: the contact gap's
   /// zero (apex_z_m), the touched point and the surface normal there (touches = false: free
@@ -104,6 +130,7 @@ class Plant {
   void refresh_site();
   void ensure_touch();
   double depth_now() const;
+  double gap_offset() const;  // depth - s
   void update_contact(double dt_s, double mount_rate_m_per_s);
   std::uint16_t pressure_code(int channel, double pressure_Pa) const;  // + noise, quantised
   std::uint16_t pressure_code_at(double pressure_Pa, double g) const;  // with noise sigma g
@@ -120,10 +147,14 @@ class Plant {
   double time_s_ = 0.0;
   std::uint64_t tick_ = 0;
 
-  // mount and the contact site under it
+  // the probe's axis, and the mount and the contact site on that axis
+  std::array<double, 3> axis_{0.0, 0.0, 1.0};
+  bool vertical_ = true;  // axis_ is exactly (0, 0, 1): the vertical formulas, bit for bit
   double mount_x_m_ = 0.0, mount_y_m_ = 0.0, mount_z_m_ = 0.0;
-  double surface_z_m_ = 0.0;        // contact zero: z_touch, or z_s under the apex while far
-  double apex_surface_z_m_ = 0.0;   // z_s under the apex (+inf: nothing)
+  double site_x_m_ = 0.0, site_y_m_ = 0.0;  // the axis line's crossing of z = 0
+  double cos_theta_ = 1.0;                  // axis . normal at the touch (1: none)
+  double surface_z_m_ = 0.0;        // contact zero: z_touch, or the axis's crossing while far
+  double apex_surface_z_m_ = 0.0;   // z where the axis crosses the surface (+inf: nothing)
   SphereTouch touch_{};             // valid when touch_valid_
   bool touch_valid_ = false;
   struct SearchedTouch {  // the last site searched with sphere_touch
@@ -131,7 +162,7 @@ class Plant {
     double x_m = 0.0, y_m = 0.0;
     SphereTouch touch{};
   } searched_;
-  double gap_offset_prev_m_ = 0.0;  // mount_z - z_s at the end of the previous step
+  double gap_offset_prev_m_ = 0.0;  // gap_offset() at the end of the previous step
   bool site_dirty_ = true;
   ContactParams params_{};
   ContactModel contact_model_{};
