@@ -3,7 +3,9 @@
 // frame), the plant's mount following the arm, and the contact line's latency to input 1.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "palp/sim/robot_world.hpp"
 
@@ -11,12 +13,13 @@ namespace palp::sim {
 namespace {
 
 struct World {
-  explicit World(RobotWorldOptions o = {}) {
+  explicit World(RobotWorldOptions o = {}, const char* phantom = "none") {
     fw::DeviceIdentity id;
     id.board = "palp-sim";
     sim = std::make_unique<Simulation>(id, std::make_unique<ModelPlant>("none", 1));
     world = std::make_unique<RobotWorld>(*sim, o);
-    auto p = std::make_unique<ArmMountedPlant>(std::make_unique<ModelPlant>("none", 1), *world, *sim);
+    auto p =
+        std::make_unique<ArmMountedPlant>(std::make_unique<ModelPlant>(phantom, 1), *world, *sim);
     plant = &p->inner().model();
     sim->set_plant(std::move(p));
   }
@@ -122,6 +125,52 @@ TEST(RobotWorld, AStopWriteIsTheReactionToAHeldContactAndLandsTheLatencyLater) {
   EXPECT_GE(w.sim->ticks() - held_at, 40u);
   EXPECT_LT(w.sim->ticks() - held_at, 61u);
   EXPECT_EQ(w.world->bridge().status().stop_seen, 1);
+}
+
+// --- the probe's axis (hil/plant/README.md "Oblique contact") -------------------------------
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Turn the tool about its own y axis by b_deg (the TCP, the tip apex, stays where it is).
+void tilt_tool_about_y(World& w, double b_deg) {
+  w.probe_tool();
+  const plant::Transform turn = plant::pose_from_xyzabc(0, 0, 0, 0, b_deg * kDeg, 0);
+  ASSERT_TRUE(w.world->arm().move_lin_rel(turn, 0.1));
+  w.sim->run(40000, 0);  // 2 s: 0.44 rad counts as 44 mm of path
+  ASSERT_FALSE(w.world->arm().moving());
+}
+
+TEST(RobotWorld, TheProbesAxisAndItsWeightFollowTheFlangesOrientation) {
+  World w;
+  EXPECT_EQ(w.plant->probe_axis(), (std::array<double, 3>{0.0, 0.0, 1.0}));  // vertical: exact
+  EXPECT_EQ(w.plant->config().mechanics.gravity_axis_cosine, 1.0);
+  tilt_tool_about_y(w, 25.0);
+  // the flange's axes start along the phantom's: its z turned about y is (sin, 0, cos)
+  const auto a = w.plant->probe_axis();
+  EXPECT_NEAR(a[0], std::sin(25 * kDeg), 1e-9);
+  EXPECT_NEAR(a[1], 0.0, 1e-9);
+  EXPECT_NEAR(a[2], std::cos(25 * kDeg), 1e-9);
+  EXPECT_NEAR(w.plant->config().mechanics.gravity_axis_cosine, std::cos(25 * kDeg), 1e-9);
+}
+
+TEST(RobotWorld, AToolAlignedWithTheWedgesNormalPressesAlongItWithTheFlatLaw) {
+  RobotWorldOptions o;  // the tip 10 mm above the wedge's x = 50, y = 35 mm (where z_s = 0)
+  o.start_at_tip_mm = true;
+  o.start_tip_mm[0] = 650;  // the phantom frame: base (600, 0, 300) mm, turned by C = 180 deg
+  o.start_tip_mm[1] = -35;
+  o.start_tip_mm[2] = 310;
+  World w(o, "wedge_25");
+  tilt_tool_about_y(w, -25.0);  // the tool's z along the wedge's normal (-sin 25, 0, cos 25)
+  plant::Plant& p = *w.plant;
+  EXPECT_NEAR(p.axis_normal_cosine(), 1.0, 1e-9);
+  // push the coil 0.5 mm past the first touch along the axis: the flat law, along -axis
+  const double axis_z = p.probe_axis()[2];
+  const double s_touch = (p.site_touch().apex_z_m - p.mount_m()[2]) / axis_z;
+  p.reset_state({s_touch + 0.5e-3, 0.0, 0.0});
+  const double flat = plant::elastic_contact(p.contact_params(), 2.5e-3, 0.5e-3).force_N;
+  EXPECT_NEAR(p.contact_force_N() / flat, 1.0, 1e-6);
+  const auto f = p.contact_force_vector_N();
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(f[i], -flat * p.probe_axis()[i], 1e-6 * flat) << i;
 }
 
 }  // namespace

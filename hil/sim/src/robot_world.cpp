@@ -10,6 +10,10 @@ namespace palp::sim {
 namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+// A probe axis more than ~80 degrees from the phantom's +z cannot press into its top: the
+// plant's mount is then parked out of reach (1 m above the datum).
+constexpr double kMinAxisZ = 0.17;
+constexpr double kParkedZ_m = -1.0;
 
 plant::Transform phantom_frame_of(const RobotWorldOptions& o) {
   return plant::pose_from_xyzabc(o.phantom_frame_mm[0] * 1e-3, o.phantom_frame_mm[1] * 1e-3,
@@ -66,18 +70,37 @@ void RobotWorld::tick(double dt_s, plant::Plant& plant, bool contact_line) {
   line_at_ = (line_at_ + 1) % line_delay_.size();
   bridge_.set_digital_inputs(seen ? 1u : 0u);
 
-  // the contact force pushes the tip along the phantom's -z
-  const double f_N = plant.contact_force_N();
+  // the material's force on the tip (against the probe's axis, plus the oblique contact's
+  // lateral part), from the phantom frame into the base frame
+  const std::array<double, 3> f_phantom = plant.contact_force_vector_N();
   double f[3];
-  for (int i = 0; i < 3; ++i) f[i] = -f_N * phantom_frame_.r.m[i][2];
+  proto::rb::rotate(phantom_frame_.r, f_phantom.data(), f);
   bridge_.set_external_force(f, true);
 
   bridge_.advance(dt_s, wall_us_);
   if (!arm_.moving() && placed_) return;  // the mount stays where the arm left it
   double tip[3];
   tip_in_phantom(tip);
-  plant.move_mount(tip[0], tip[1], tip[2]);
+  // the probe's axis is the flange's +z; gravity is the base frame's -z
+  const std::array<double, 3> axis = probe_axis_in_phantom();
+  double down = -arm_.flange().r.m[2][2];
+  if (std::abs(1.0 - down) < 1e-12) down = 1.0;  // rounding of a vertical flange
+  plant.set_gravity_axis_cosine(std::clamp(down, -1.0, 1.0));
+  if (axis[2] >= kMinAxisZ) {
+    plant.set_probe_axis(axis);
+    plant.move_mount(tip[0], tip[1], tip[2]);
+  } else {
+    plant.move_mount(tip[0], tip[1], kParkedZ_m);
+  }
   placed_ = !arm_.moving();
+}
+
+std::array<double, 3> RobotWorld::probe_axis_in_phantom() const {
+  const plant::Transform rel = phantom_inverse_ * arm_.flange();
+  std::array<double, 3> a = {rel.r.m[0][2], rel.r.m[1][2], rel.r.m[2][2]};
+  const double n = std::hypot(a[0], a[1], a[2]);
+  for (double& v : a) v /= n;
+  return a;
 }
 
 ModbusException RobotWorld::read(std::uint16_t address, std::uint16_t count, std::uint16_t* out) {

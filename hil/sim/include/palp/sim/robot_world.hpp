@@ -5,11 +5,17 @@
 //   1. the bridge (its cycle every cycle_ms) and the arm advance by the tick;
 //   2. the tip apex at stroke origin, in the phantom frame,
 //        inverse(phantom_frame) * flange * probe_tcp,
-//      goes to the plant with Plant::move_mount (so the contact sees the approach speed);
+//      goes to the plant with Plant::move_mount (so the contact sees the approach speed), with
+//      the probe's axis, the flange's +z in the phantom frame, as Plant::set_probe_axis (the
+//      contact is taken along it at its angle to the surface normal: hil/plant/README.md
+//      "Oblique contact") and the coil's weight along that axis, the cosine of the flange's +z
+//      against the base frame's -z, as Plant::set_gravity_axis_cosine. An axis more than ~80
+//      degrees from the phantom's +z cannot press into its top: the mount is parked 1 m above;
 //   3. the controller's contact-output line reaches the bridge's digital input 1 after
 //      input_latency_ms of virtual time;
-//   4. the external force on the TCP is the plant's contact force on the tip, which pushes
-//      along the phantom's -z (the bridge reports it against the approach axis, with noise).
+//   4. the external force on the TCP is the material's force on the tip,
+//      Plant::contact_force_vector_N (against the probe's axis, plus the lateral part an
+//      oblique contact has), in the base frame (the bridge reports it, with noise).
 //
 // The probe's axis (the coil's +stroke) is the flange's +z; the phantom's +z points into the
 // specimen. The initial flange pose puts the tip start_above_mm above the phantom origin (or at
@@ -22,6 +28,7 @@
 // as device bytes do (Simulation::host_reaction). A closed connection stops a moving arm.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -67,6 +74,8 @@ class RobotWorld final : public ModbusHandler {
   plant::RobotArm& arm() { return arm_; }
   /// The tip apex at stroke origin in the phantom frame, m (the plant's mount).
   void tip_in_phantom(double out[3]) const;
+  /// The probe's axis (the flange's +z) as a unit vector in the phantom frame.
+  std::array<double, 3> probe_axis_in_phantom() const;
   const RobotWorldOptions& options() const { return options_; }
 
  private:
