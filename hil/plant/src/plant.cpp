@@ -163,6 +163,7 @@ void Plant::set_probe_axis(const std::array<double, 3>& axis) {
   vertical_ = a[0] == 0.0 && a[1] == 0.0 && a[2] == 1.0;
   site_dirty_ = true;
   searched_.valid = false;
+  move_mount(mount_x_m_, mount_y_m_, mount_z_m_);  // the site on the new axis line
 }
 
 void Plant::set_gravity_axis_cosine(double cosine) {

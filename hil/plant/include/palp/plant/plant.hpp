@@ -54,8 +54,9 @@ class Plant {
   /// Put the coil in a given state (tests, ring-down); the contact memory is reset.
   void reset_state(const CoilState& state);
   /// The probe's axis (the coil's +stroke direction), a unit vector in the phantom frame with
-  /// z > 0; default (0, 0, 1). Takes effect with the next move_mount / set_mount. An axis within
-  /// 1e-12 of (0, 0, 1) is taken as exactly that. Throws std::invalid_argument unless the
+  /// z > 0; default (0, 0, 1). The mount stays; the site (the axis line through it) is taken
+  /// anew, its first touch at the next step. An axis within 1e-12 of (0, 0, 1) is taken as
+  /// exactly that. Throws std::invalid_argument unless the
   /// length is 1 within 1e-9 and z > 0.
   void set_probe_axis(const std::array<double, 3>& axis);
   /// cos(angle between gravity and the probe's axis), 1 = pointing down: the coil's weight along
