@@ -45,7 +45,8 @@ struct MechanicsConfig {
   double stroke_min_m = 0.0;          // rear end stop = stroke origin (encoder count 0)
   double stroke_max_m = 0.034;        // front end stop: assumed 34 mm stroke
   double gravity_m_per_s2 = 9.80665;  // standard gravity
-  double gravity_axis_cosine = 1.0;   // cos(angle between gravity and +z); 1 = probe points down
+  double gravity_axis_cosine = 1.0;   // cos(angle between gravity and the probe's axis, +s);
+                                      // 1 = probe points down (Plant::set_gravity_axis_cosine)
   double tip_radius_m = 2.5e-3;       // §II-A: PLA hemisphere, R = 2.5 mm
 };
 

@@ -2,10 +2,11 @@
 // Phantoms: specimens the probe presses on, each loaded from a readable parameter file in
 // hil/plant/phantoms/ (format and every key: README.md "Phantom files").
 //
-// Phantom frame: x, y horizontal, z along the probe axis with +z into the specimen (down for a
-// vertical probe), z = 0 at the phantom's datum (the flat top of a 1D object, the mean top of the
-// pad). The surface height z_s(x, y) is the z of the top surface; the tip apex at z_tip
-// indents it by delta = z_tip - z_s. Outside the footprint z_s is +infinity (nothing to touch).
+// Phantom frame: x, y horizontal, +z into the specimen (down), z = 0 at the phantom's datum (the
+// flat top of a 1D object, the mean top of the pad); the probe's axis is +z by default and may
+// tilt (Plant::set_probe_axis). The surface height z_s(x, y) is the z of the top surface; a
+// vertical tip apex at z_tip indents a flat top by delta = z_tip - z_s. Outside the footprint
+// z_s is +infinity (nothing to touch).
 #pragma once
 
 #include <array>

@@ -109,9 +109,10 @@ class Plant {
   /// touched point, t the axis's direction in the tangent plane (zero out of contact).
   std::array<double, 3> contact_force_vector_N() const;
   double channel_pressure_Pa(int channel) const;  // true gauge pressure, paper channel 1..6
-  /// Where the tip at the current mount (x, y) first touches the phantom: the contact gap's
-  /// zero (apex_z_m), the touched point and the surface normal there (touches = false: free
-  /// air). The contact law and the channels are taken at the mount's (x, y), not the point.
+  /// Where the tip moving along the probe's axis through the mount first touches the phantom:
+  /// the contact gap's zero (apex_z_m), the touched point and the surface normal there
+  /// (touches = false: free air). The contact law's parameters and the channels are taken where
+  /// the axis crosses the surface (the mount's x, y for a vertical probe), not at the point.
   SphereTouch site_touch() const;
   double force_constant_N_per_A() const { return kf_.at(s_m_); }
   bool at_rear_stop() const;
