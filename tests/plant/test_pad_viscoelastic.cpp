@@ -78,8 +78,9 @@ TEST(PadViscoelastic, LinearisationIsTheExactDynamicStiffnessAtItsOwnNaturalFreq
     EXPECT_NEAR(d.real() + l.m_kg * w * w, l.k_N_per_m, 1e-9 * l.k_N_per_m);
     EXPECT_NEAR(d.imag() / w, l.b_N_s_per_m, 1e-9 * l.b_N_s_per_m);
     EXPECT_NEAR(w, std::sqrt(l.k_N_per_m / l.m_kg), 1e-12 * w);
-    // w tau_1 >= 37: the relaxing part is nearly all stiffness, 1.2 k_o in all
-    EXPECT_GT(w * l.relaxation_time_s, 37.0);
+    // w tau_1 >= 36.7: the relaxing part is nearly all stiffness, 1.2 k_o in all (row 5 meets
+    // the oblique contact on a 12 degree flank of the waves: 36.7, from 37.0 before)
+    EXPECT_GT(w * l.relaxation_time_s, 36.5);
     EXPECT_NEAR(l.k_sls_N_per_m, l.k_relaxing_N_per_m, 1e-3 * l.k_relaxing_N_per_m);
     EXPECT_LT(l.b_sls_N_s_per_m, 0.02 * l.b_N_s_per_m);
     std::printf("pad (%d, %d) at 1.0 A: k_o %.0f N/m, omega_n %.2f rad/s (%.2f Hz), zeta %.4f\n",
