@@ -19,6 +19,7 @@
 #include "palp/analysis/indentation.hpp"
 #include "palp/analysis/pressure.hpp"
 #include "palp/error.hpp"
+#include "palp/pressure_analysis.hpp"
 #ifdef PALP_HAVE_HDF5
 #include "palp/hdf5.hpp"
 #endif
@@ -183,23 +184,19 @@ int analyze_pressure(const Context& ctx, const AnalyzeCli& o) {
   an::IndentationParams p = params_of(o);
   const Loaded l = load(o.input, p);
   kf_table_of(o, l, p);
-  const auto channels = pressure_channels(l, o.input);
+  pressure_channels(l, o.input);  // none: an error naming the file before the fits run
   const an::IndentationResult r = an::analyze_indentation(l.curve, p);
-  if (!r.contact_z_m)
-    throw palp::RecordingError(o.input, 0, "no contact point for the object force: " + r.contact_z_m.reason);
-  Eigen::MatrixXd P(l.curve.z_m.size(), static_cast<Eigen::Index>(channels.size()));
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    P.col(static_cast<Eigen::Index>(c)) =
-        Eigen::Map<const Eigen::VectorXd>(channels[c].second->data(), P.rows());
-  const an::PressureResult pr = an::analyze_pressure(l.curve, P, p, *r.contact_z_m.value);
+  an::PressureResult pr;
+  try {  // the SDK's pressure-force test (what palp::indent does), on this contact point
+    pr = palp::pressure_analysis_of(l.rec, p, r);
+  } catch (const palp::DataError& e) {
+    throw palp::RecordingError(o.input, 0, e.what());
+  }
   json j;
   j["params"] = params_json(o, p);
   j["force"] = std::string("object force F_o = K_f (i - I_c) - k_v (z - z_c), samples at i >= I_c on "
                            "the loading branches; z_c of the ") + an::model_name(*r.chosen) + " fit";
-  // the SDK's summary (what palpctl indent writes); its channel numbers are the matrix columns,
-  // here the recording's channels that are present
-  j.update(palp::pressure_summary_json(pr));
-  for (std::size_t c = 0; c < channels.size(); ++c) j["channels"][c]["channel"] = channels[c].first;
+  j.update(palp::pressure_summary_json(pr));  // the SDK's summary (what palpctl indent writes)
   if (ctx.json) {
     print_json(j);
     return kOk;

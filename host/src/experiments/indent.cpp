@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "palp/indent.hpp"
+#include "palp/pressure_analysis.hpp"
 #include "palp/result.hpp"
 #include "experiment_common.hpp"
 
@@ -145,22 +146,8 @@ void analyze_run(IndentationRun& run) {
     run.pressure_reason = "no indentation analysis: " + run.analysis_reason;
     return;
   }
-  if (!run.analysis->contact_z_m) {
-    run.pressure_reason = "no contact point for the object force: " + run.analysis->contact_z_m.reason;
-    return;
-  }
-  const Recording& r = run.recording;
-  for (const auto& col : r.p_Pa) {
-    if (!col) {
-      run.pressure_reason = "the recording lacks a pressure column";
-      return;
-    }
-  }
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(r.size()), 6);
-  for (Eigen::Index ch = 0; ch < 6; ++ch)
-    P.col(ch) = Eigen::Map<const Eigen::VectorXd>((*r.p_Pa[static_cast<std::size_t>(ch)]).data(), P.rows());
-  try {
-    run.pressure = analysis::analyze_pressure(c, P, run.settings.analysis, *run.analysis->contact_z_m.value);
+  try {  // the pressure-force test on the same contact point (pressure_analysis.hpp)
+    run.pressure = pressure_analysis_of(run.recording, run.settings.analysis, *run.analysis);
   } catch (const DataError& e) {
     run.pressure_reason = e.what();
   }
