@@ -11,6 +11,7 @@
 #include "option_alias.hpp"
 #include "palp/result.hpp"
 #include "palp/identification.hpp"
+#include "palp/identification_result.hpp"
 
 namespace palpctl {
 
@@ -58,31 +59,22 @@ CLI::App* add_one(CLI::App& parent, Context& ctx, const std::string& name,
 int calibrate_kf(const Context& ctx, const palp::KfCalibrationSettings& settings) {
   settings.validate();
   auto probe = ctx.connect();
+  catch_interrupts();  // Ctrl-C stops the staircase (coil at 0 A); nothing is written then
   Progress progress("calibrate kf", 1000, !ctx.json, "permille");
-  const palp::KfCalibrationRun run = palp::calibrate_kf(probe, settings, [&](const palp::IdentifyProgress& p) {
-    progress.update(static_cast<std::uint64_t>(p.fraction * 1000));
-  });
+  const palp::KfCalibrationRun run = palp::calibrate_kf(
+      probe, settings,
+      [&](const palp::IdentifyProgress& p) {
+        progress.update(static_cast<std::uint64_t>(p.fraction * 1000));
+      },
+      [] { return interrupted(); });
+  if (run.interrupted) {
+    std::cerr << "palpctl: calibrate kf interrupted; nothing written to the device\n";
+    return kInterrupted;
+  }
   progress.finish(1000);
   const auto& c = run.calibration;
-  json nodes = json::array();
-  for (std::size_t k = 0; k < c.node_stroke_m.size(); ++k)
-    nodes.push_back({{"stroke_mm", mm_from_m(c.node_stroke_m[k])},
-                     {"kf_N_per_A", c.kf_N_per_A[k]},
-                     {"kf_N_per_A_se", c.kf_se_N_per_A[k]}});
-  json j = {{"calibrate", "kf"},
-            {"balance", "K_f(s) i = k_v (s - s_rest) + c, least squares over the settled levels"},
-            {"kv_N_per_mm", N_per_mm_from_N_per_m(c.k_v_N_per_m)},
-            {"levels", run.points.size()},
-            {"nodes", nodes},
-            {"c_N", c.c_N},
-            {"c_N_se", c.c_se_N},
-            {"residual_rms_N", c.residual_rms_N},
-            {"anchor", settings.anchor ? json{{"stroke_mm", mm_from_m(settings.anchor->stroke_m)},
-                                              {"kf_N_per_A", settings.anchor->kf_N_per_A}}
-                                       : json(nullptr)},
-            {"warning", c.warning},
-            {"written", run.written},
-            {"committed", run.committed}};
+  const json j = palp::kf_calibration_json(run);  // the SDK's result: Python's to_dict() too
+  const json& nodes = j["nodes"];
   if (ctx.json) {
     print_json(j);
   } else {

@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -263,9 +265,20 @@ TEST_F(PalpctlFreeAirSim, CalibrateKfWritesTheAnchoredTableIntoTheDevice) {
   const auto r = run({"--json", "calibrate", "kf", "--ram-only"});
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
+  // the keys (the SDK's kf_calibration_json since it moved out of palpctl), exactly these
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"anchor", "balance", "c_N", "c_N_se", "calibrate", "committed",
+                                             "kv_N_per_mm", "levels", "nodes", "residual_rms_N", "warning",
+                                             "written"}));
+  EXPECT_EQ(j["nodes"][0].size(), 3u);
+  EXPECT_TRUE(j["nodes"][0].contains("kf_N_per_A_se"));
+  EXPECT_NEAR(j["kv_N_per_mm"].get<double>(), 0.0439, 1e-12);
+  EXPECT_EQ(j["calibrate"], "kf");
   EXPECT_EQ(j["written"], true);
   EXPECT_EQ(j["committed"], false);
   EXPECT_EQ(j["anchor"]["stroke_mm"], 24.0);
+  EXPECT_EQ(j["anchor"]["kf_N_per_A"], 2.918);
   ASSERT_EQ(j["nodes"].size(), 16u);
   // the plant's table (config.hpp): 2.918 N/A from 23.5 mm on, rising linearly to 3.84 at 17 mm
   for (const auto& n : j["nodes"]) {

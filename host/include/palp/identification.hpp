@@ -184,8 +184,14 @@ struct KfCalibrationRun {
   std::vector<analysis::KfStaticPoint> points;
   analysis::KfCalibration calibration;
   bool written = false, committed = false;
+  /// Stopped by `cancelled`: the staircase stopped (coil at 0 A), the recording holds what came,
+  /// nothing was fitted and nothing written to the device (points and calibration empty).
+  bool interrupted = false;
 };
+/// Runs the K_f calibration (see KfCalibrationSettings); kf_calibration_json
+/// (identification_result.hpp) is its result as `palpctl calibrate kf --json` prints it.
 KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,
-                              const IdentifyProgressFn& progress = {});
+                              const IdentifyProgressFn& progress = {},
+                              const std::function<bool()>& cancelled = {});
 
 }  // namespace palp

@@ -70,4 +70,11 @@ std::filesystem::path write_identification_result(const std::filesystem::path& d
                                                   const nlohmann::json& analysis,
                                                   Overwrite overwrite = Overwrite::no);
 
+/// The K_f calibration's result, one definition for `palpctl calibrate kf --json` and Python's
+/// KfCalibrationRun.to_dict(): calibrate ("kf"), balance (the fitted equation), kv_N_per_mm,
+/// levels (settled levels fitted), nodes [{stroke_mm, kf_N_per_A, kf_N_per_A_se}], c_N, c_N_se,
+/// residual_rms_N, anchor ({stroke_mm, kf_N_per_A} or null), warning ("" when none), written,
+/// committed.
+nlohmann::json kf_calibration_json(const KfCalibrationRun& run);
+
 }  // namespace palp

@@ -9,6 +9,7 @@
 #include "finite.hpp"
 #include "palp/error.hpp"
 #include "palp/identification.hpp"
+#include "palp/identification_result.hpp"
 #include "palp/protocol/program_schedule.hpp"
 #include "palp/result.hpp"
 
@@ -62,7 +63,8 @@ void KfCalibrationSettings::validate() const {
 
 namespace {
 KfCalibrationRun calibrate_kf_unguarded(Probe& probe, const KfCalibrationSettings& settings,
-                                        const IdentifyProgressFn& progress) {
+                                        const IdentifyProgressFn& progress,
+                                        const std::function<bool()>& cancelled) {
   KfCalibrationRun run;
   run.settings = settings;
   auto report = [&](const char* phase, double fraction) {
@@ -70,7 +72,7 @@ KfCalibrationRun calibrate_kf_unguarded(Probe& probe, const KfCalibrationSetting
   };
   const DeviceInfo device = probe.info();
   const auto rate = static_cast<std::uint32_t>(std::lround(device.control_rate_Hz));
-  experiment::release_coil(probe, 1.0, {}, [&] { report("releasing the coil", 0); });
+  experiment::release_coil(probe, 1.0, cancelled, [&] { report("releasing the coil", 0); });
   // the table's positions are from the stroke origin: home first when it is not known
   if (probe.calibration().stroke_origin_valid == 0) {
     report("homing", 0);
@@ -89,9 +91,14 @@ KfCalibrationRun calibrate_kf_unguarded(Probe& probe, const KfCalibrationSetting
         probe.start();
       },
       duration_s, [&](double elapsed_s, const Sample&) { report("staircase", elapsed_s / duration_s); },
-      {});
-  report("analysing", 1.0);
+      cancelled);
   run.recording = std::move(rec.recording);
+  if (rec.interrupted) {  // a partial staircase: nothing fitted, nothing written
+    run.interrupted = true;
+    run.recording.sidecar = experiment::base_sidecar(probe, "kf_calibration", rec);
+    return run;
+  }
+  report("analysing", 1.0);
   if (run.recording.size() == 0) throw ConfigError("K_f calibration: the staircase recorded no samples");
 
   run.points = analysis::kf_static_points(run.recording, ramp, rate, origin_z_m, settings.settled_fraction);
@@ -141,9 +148,35 @@ KfCalibrationRun calibrate_kf_unguarded(Probe& probe, const KfCalibrationSetting
 }  // namespace
 
 KfCalibrationRun calibrate_kf(Probe& probe, const KfCalibrationSettings& settings,
-                              const IdentifyProgressFn& progress) {
+                              const IdentifyProgressFn& progress,
+                              const std::function<bool()>& cancelled) {
   settings.validate();
-  return experiment::or_make_safe(probe, [&] { return calibrate_kf_unguarded(probe, settings, progress); });
+  return experiment::or_make_safe(
+      probe, [&] { return calibrate_kf_unguarded(probe, settings, progress, cancelled); });
+}
+
+nlohmann::json kf_calibration_json(const KfCalibrationRun& run) {
+  const analysis::KfCalibration& c = run.calibration;
+  nlohmann::json nodes = nlohmann::json::array();
+  for (std::size_t k = 0; k < c.node_stroke_m.size(); ++k)
+    nodes.push_back({{"stroke_mm", c.node_stroke_m[k] * 1e3},
+                     {"kf_N_per_A", c.kf_N_per_A[k]},
+                     {"kf_N_per_A_se", c.kf_se_N_per_A[k]}});
+  const auto& anchor = run.settings.anchor;
+  return {{"calibrate", "kf"},
+          {"balance", "K_f(s) i = k_v (s - s_rest) + c, least squares over the settled levels"},
+          {"kv_N_per_mm", c.k_v_N_per_m / 1e3},
+          {"levels", run.points.size()},
+          {"nodes", nodes},
+          {"c_N", c.c_N},
+          {"c_N_se", c.c_se_N},
+          {"residual_rms_N", c.residual_rms_N},
+          {"anchor", anchor ? nlohmann::json{{"stroke_mm", anchor->stroke_m * 1e3},
+                                             {"kf_N_per_A", anchor->kf_N_per_A}}
+                            : nlohmann::json(nullptr)},
+          {"warning", c.warning},
+          {"written", run.written},
+          {"committed", run.committed}};
 }
 
 }  // namespace palp
