@@ -111,7 +111,9 @@ struct RecordResult {
   std::size_t gaps = 0;              ///< gap records (extra.gaps)
   bool interrupted = false;          ///< cancelled() ended it
   std::optional<ProgramResult> program;  ///< how the program ended; empty without one
-  Sidecar sidecar_written;           ///< the sidecar as written (program block, health, ...)
+  /// The sidecar as written (run.json: program block, health, gaps, ..., with the writer's
+  /// sdk_version, created_utc, csv_rows and csv_crc32); empty when nothing was written.
+  Sidecar sidecar_written;
 };
 
 /// One recording. Not copyable; run() once.

@@ -148,8 +148,8 @@ class RecordingWriter {
   /// in sdk_version and created_utc when they are empty, and csv_rows / csv_crc32 always.
   /// Throws ConfigError, with nothing renamed and the writer still usable, when no row was
   /// appended or the sidecar cannot be written (see sidecar_to_json); RecordingError when the
-  /// disk refuses.
-  void finish(const Sidecar& sidecar);
+  /// disk refuses. Returns the sidecar as written (those four keys filled in).
+  Sidecar finish(const Sidecar& sidecar);
 
   std::uint64_t rows() const;
   bool finished() const;

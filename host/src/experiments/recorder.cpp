@@ -283,11 +283,10 @@ RecordResult Recorder::run(Probe& probe) {
   out.csv = writer.csv_path();
   out.sidecar = writer.sidecar_path();
   if (begun && writer.rows() > 0) {
-    writer.finish(side);
+    out.sidecar_written = writer.finish(side);
     out.written = true;
   }
   if (error) std::rethrow_exception(error);
-  out.sidecar_written = std::move(side);
   return out;
 }
 

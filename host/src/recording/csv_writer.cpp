@@ -198,7 +198,7 @@ void RecordingWriter::append(const RecordingRow& row) {
   if (w.buffer.size() >= kBufferBytes) w.write_out();
 }
 
-void RecordingWriter::finish(const Sidecar& sidecar) {
+Sidecar RecordingWriter::finish(const Sidecar& sidecar) {
   Impl& w = *impl_;
   const std::string csv_name = w.csv_final.string();
   if (w.csv == nullptr) throw ConfigError(csv_name + ": finish() was called already");
@@ -238,6 +238,7 @@ void RecordingWriter::finish(const Sidecar& sidecar) {
   }
   w.finished = true;
   rd::sync_directory(w.csv_final.parent_path());
+  return s;
 }
 
 std::uint64_t RecordingWriter::rows() const { return impl_->rows; }
