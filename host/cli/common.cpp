@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // palpctl: exit codes, error mapping, lab-unit JSON of the SDK's structs, progress, Ctrl-C.
 #include "common.hpp"
+#include "gap_lines.hpp"
 
 #include "palp/result.hpp"
 
@@ -14,6 +15,8 @@
 #include <cstdio>
 #include <ctime>
 #include <iostream>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "palp/log.hpp"
@@ -86,20 +89,67 @@ void require_finite_numbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) require_finite_numbers(*sub);
 }
 
+namespace {
+
+/// -v's stream-gap lines: at most kGapLinesPerSecond a second (gap_lines.hpp).
+constexpr int kGapLinesPerSecond = 5;
+
+struct GapLines {
+  std::mutex mu;
+  GapLineLimiter limiter{kGapLinesPerSecond, std::chrono::seconds(1)};
+};
+GapLines& gap_lines() {
+  static auto* g = new GapLines;  // never destroyed: an SDK thread may log during exit
+  return *g;
+}
+
+std::string log_line(const char* level, const std::string& message) {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char stamp[64];
+  std::snprintf(stamp, sizeof stamp, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900,
+                utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
+                static_cast<int>(ms));
+  return std::string("palpctl: ") + stamp + " " + level + ": " + message + "\n";
+}
+
+std::string suppressed_line(std::uint64_t n) {
+  return log_line("warning", std::to_string(n) + " more stream gap line" + (n == 1 ? "" : "s") +
+                                 " suppressed (at most " + std::to_string(kGapLinesPerSecond) +
+                                 " a second)");
+}
+
+}  // namespace
+
 void log_sdk_to_stderr() {
   palp::set_log_handler([](palp::LogLevel level, const std::string& message) {
-    const auto now = std::chrono::system_clock::now();
-    const std::time_t t = std::chrono::system_clock::to_time_t(now);
-    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-    std::tm utc{};
-    gmtime_r(&t, &utc);
-    char stamp[64];
-    std::snprintf(stamp, sizeof stamp, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1,
-                  utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<int>(ms));
+    std::string text = log_line(palp::log_level_name(level), message);
+    if (message.rfind("stream gap:", 0) == 0) {
+      GapLines& g = gap_lines();
+      std::lock_guard lock(g.mu);
+      const auto suppressed = g.limiter.admit(std::chrono::steady_clock::now());
+      if (!suppressed) return;
+      if (*suppressed > 0) text = suppressed_line(*suppressed) + text;
+    }
     // one write per line: lines from the SDK's threads do not interleave
-    const std::string line = std::string("palpctl: ") + stamp + " " + palp::log_level_name(level) + ": " + message + "\n";
-    std::fwrite(line.data(), 1, line.size(), stderr);
+    std::fwrite(text.data(), 1, text.size(), stderr);
   });
+  static bool registered = false;
+  if (!registered) {
+    registered = true;
+    std::atexit([] {  // the gap lines suppressed since the last one printed
+      GapLines& g = gap_lines();
+      std::lock_guard lock(g.mu);
+      const std::uint64_t n = g.limiter.take_suppressed();
+      if (n == 0) return;
+      const std::string text = suppressed_line(n);
+      std::fwrite(text.data(), 1, text.size(), stderr);
+    });
+  }
 }
 
 int run_guarded(const Context& ctx, const std::function<int()>& action) {

@@ -80,6 +80,8 @@ void require_finite_numbers(CLI::App& app);
 
 /// -v/--verbose: the SDK's log (palp/log.hpp: link lost and restored, requests resent, stream
 /// gaps, robot reconnects) on stderr, a line each: `palpctl: 2026-11-26T05:40:12.345Z warning: ...`.
+/// Stream-gap lines: at most 5 per one-second window; the rest counted in a line "N more stream gap
+/// lines suppressed (at most 5 a second)" before the next gap line printed, and at exit.
 void log_sdk_to_stderr();
 
 /// Runs a command's action, turning every SDK error into its exit code and a message on stderr
