@@ -18,6 +18,7 @@ leaves the device safe (coil at 0 A) and then raises KeyboardInterrupt.
 from . import _palp
 from ._palp import (
     analyze_map,
+    calibrate_kf,
     Calibration,
     channel,
     ConfigError,
@@ -32,6 +33,7 @@ from ._palp import (
     FaultInfo,
     FlashError,
     gap_dtype,
+    GuardedApproach,
     GAP_SOURCES,
     Handshake,
     Health,
@@ -44,6 +46,8 @@ from ._palp import (
     IndentationRun,
     IndentationSettings,
     IndentProgress,
+    KfCalibrationRun,
+    KfCalibrationSettings,
     list_devices,
     load_map,
     load_plan,
@@ -51,9 +55,11 @@ from ._palp import (
     load_trace,
     map_plan,
     MapAnalysis,
+    MotionResult,
     MultisineProgram,
     Params,
     Plan,
+    Pose,
     Probe,
     ProgramResult,
     ProgramStatus,
@@ -70,8 +76,10 @@ from ._palp import (
     RobotFaultError,
     RobotLinkError,
     RobotRejectedError,
+    RobotStatus,
     sample_dtype,
     save_trace,
+    set_log_handler,
     sdk_version,
     SineProgram,
     Status,
@@ -88,5 +96,10 @@ from ._palp import (
 from . import analyze
 
 __version__ = sdk_version
+
+# the SDK's threads must not call a Python log handler while the interpreter shuts down
+import atexit as _atexit
+
+_atexit.register(set_log_handler, None)
 
 __all__ = [name for name in dir() if not name.startswith("_") and name not in ("annotations",)]

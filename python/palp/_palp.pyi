@@ -390,6 +390,36 @@ def identify(probe: Probe, settings: IdentificationSettings,
              progress: Optional[Callable[[str, float, float], None]] = None) -> IdentificationRun: ...
 def _analyze_sweep(recording: Recording) -> dict[str, Any]: ...
 
+# --- the K_f calibration (palp/identification.hpp) ----------------------------------------------
+class KfCalibrationSettings:
+    def __init__(self) -> None: ...
+    start_A: float
+    stop_A: float
+    step_A: float
+    dwell_s: float
+    settled_fraction: float
+    max_nodes: int
+    k_v_N_per_m: float
+    stream_rate_Hz: float
+    write: bool
+    commit: bool
+    anchor: Optional[tuple[float, float]]
+    def validate(self) -> None: ...
+
+class KfCalibrationRun:
+    settings: KfCalibrationSettings
+    recording: Recording
+    written: bool
+    committed: bool
+    interrupted: bool
+    node_stroke_m: list[float]
+    kf_N_per_A: list[float]
+    warning: str
+    def to_dict(self) -> dict[str, Any]: ...
+
+def calibrate_kf(probe: Probe, settings: Optional[KfCalibrationSettings] = None,
+                 progress: Optional[Callable[[str, float], None]] = None) -> KfCalibrationRun: ...
+
 # --- the SDK recorder (palp/recorder.hpp) -------------------------------------------------------
 class RecordProgress:
     samples: int
@@ -406,7 +436,7 @@ class RecordResult:
     gaps: int
     interrupted: bool
     program: Optional[ProgramResult]
-    sidecar_written: dict[str, Any]
+    sidecar_written: Optional[dict[str, Any]]
 
 def record(probe: Probe, out: _Path, *, duration_s: float = 0.0, rate_Hz: float = 1000.0,
            program: Optional[Union[HoldProgram, RampProgram, SineProgram, SweepProgram]] = None,
@@ -425,10 +455,63 @@ class Recording:
 def read_recording(csv: _Path) -> Recording: ...
 def write_recording(csv: _Path, recording: Recording, overwrite: bool = False) -> None: ...
 def _analyze_indentation(recording: Recording, params: IndentationParams) -> dict[str, Any]: ...
+def _analyze_pressure(recording: Recording, params: IndentationParams) -> dict[str, Any]: ...
 
 # --- the robot, rig and plan files, maps (palp/robot.hpp, palp/rig.hpp, palp/map.hpp) ---------
+class Pose:
+    def __init__(self, x_m: float = 0.0, y_m: float = 0.0, z_m: float = 0.0, a_rad: float = 0.0,
+                 b_rad: float = 0.0, c_rad: float = 0.0) -> None: ...
+    x_m: float
+    y_m: float
+    z_m: float
+    a_rad: float
+    b_rad: float
+    c_rad: float
+
+class RobotStatus:
+    state: str
+    status_bits: int
+    result: str
+    tool: int
+    robot_time_s: float
+    pose: Pose
+    latched: Optional[Pose]
+    force_N: Optional[float]
+    joints_rad: list[float]
+
+class GuardedApproach:
+    def __init__(self) -> None: ...
+    axis: str
+    speed_m_per_s: float
+    max_travel_m: float
+    guard_host_stop: bool
+    digital_input: int
+    force_threshold_N: Optional[float]
+
+class MotionResult:
+    seq: int
+    result: str
+    guard_fired: list[str]
+    latched: Optional[Pose]
+    final_pose: Pose
+
 class Robot:
     def __init__(self, uri: str) -> None: ...
+    uri: str
+    def status(self) -> RobotStatus: ...
+    def pose(self) -> Pose: ...
+    def move_lin(self, target: Pose, speed_m_per_s: float,
+                 timeout_s: float = 120.0) -> MotionResult: ...
+    def move_lin_rel(self, offset: Pose, speed_m_per_s: float,
+                     timeout_s: float = 120.0) -> MotionResult: ...
+    def move_ptp(self, target: Pose, speed_fraction: float,
+                 timeout_s: float = 120.0) -> MotionResult: ...
+    def guarded_approach(self, approach: GuardedApproach,
+                         timeout_s: float = 120.0) -> MotionResult: ...
+    def stop(self, timeout_s: float = 2.0) -> RobotStatus: ...
+    def hold(self, timeout_s: float = 2.0) -> None: ...
+    def set_tool(self, id: int, tcp_on_flange: Pose) -> None: ...
+    def reset_fault(self) -> None: ...
 
 class Rig:
     robot_uri: str
@@ -505,3 +588,6 @@ def trace(probe: Probe, robot: Robot, rig: Rig, plan: Plan,
           resume: Optional[TracedSurface] = None) -> TracedSurface: ...
 def save_trace(file: _Path, surface: TracedSurface) -> None: ...
 def load_trace(file: _Path) -> TracedSurface: ...
+
+# --- the SDK's log (palp/log.hpp) ----------------------------------------------------------------
+def set_log_handler(handler: Optional[Callable[[str, str], None]]) -> None: ...

@@ -37,6 +37,18 @@ def indentation(source: RecordingLike, params: Optional[_palp.IndentationParams]
     return _palp._analyze_indentation(recording(source), params if params is not None else _palp.IndentationParams())
 
 
+def pressure(source: RecordingLike, params: Optional[_palp.IndentationParams] = None) -> dict:
+    """The pressure-force test of a recording (paper §V-D): each pressure column it has against
+    the object force on the loading branches, with the contact point of its indentation
+    analysis. The dict `palpctl analyze pressure --json` prints (contact_point_mm, n_loading,
+    channels [{channel, slope_Pa_per_N, r2, rise_Pa, hysteresis_ratio, ...}], params), without
+    its "force" text and the "params" keys "input" and "kf_table"; the same as an indentation
+    run's summary()["pressure"]. palp.DataError when the recording has no pressure column or no
+    contact point."""
+    return _palp._analyze_pressure(recording(source),
+                                   params if params is not None else _palp.IndentationParams())
+
+
 def sweep(source: RecordingLike) -> dict:
     """A recording palp.identify (or `palpctl sweep`) wrote, analysed again: the frequency
     response's second-order fit as the SDK's sweep_summary_json (omega_n_rad_per_s, zeta,

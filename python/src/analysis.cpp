@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "palp/indent.hpp"
+#include "palp/pressure_analysis.hpp"
 #include "palp/recording.hpp"
 #include "palp/result.hpp"
 
@@ -96,6 +97,19 @@ py::object analyze_indentation(const palp::Recording& r, const an::IndentationPa
   return to_python(j);
 }
 
+/// What `palpctl analyze pressure --json` prints for a recording (without its "force" text and
+/// its input and kf_table keys in "params"): the SDK's pressure_summary_json of
+/// pressure_analysis_of, the same analysis palp.indent's run.summary()["pressure"] holds.
+py::object analyze_pressure(const palp::Recording& r, const an::IndentationParams& p) {
+  nlohmann::json j;
+  {
+    py::gil_scoped_release release;
+    j = palp::pressure_summary_json(palp::pressure_analysis_of(r, p));
+    j["params"] = palp::indentation_params_json(p);
+  }
+  return to_python(j);
+}
+
 }  // namespace
 
 void bind_analysis(py::module_& m) {
@@ -121,6 +135,7 @@ void bind_analysis(py::module_& m) {
       py::arg("csv"), py::arg("recording"), py::arg("overwrite") = false, py::call_guard<py::gil_scoped_release>(),
       "Writes a recording (CSV + sidecar), atomically.");
   m.def("_analyze_indentation", &analyze_indentation, py::arg("recording"), py::arg("params"));
+  m.def("_analyze_pressure", &analyze_pressure, py::arg("recording"), py::arg("params"));
 }
 
 }  // namespace palp_python

@@ -17,6 +17,12 @@ nlohmann::json to_json(py::handle o) {
   return nlohmann::json::parse(text);
 }
 
+std::chrono::milliseconds timeout_of(double seconds) {
+  if (!(seconds >= 0))
+    throw palp::ConfigError("a timeout must be >= 0 s, got " + std::to_string(seconds));
+  return std::chrono::milliseconds(static_cast<long long>(seconds * 1e3 + 0.5));
+}
+
 Interrupt::~Interrupt() {
   if (error_ != nullptr || type_ != nullptr || trace_ != nullptr) {
     py::gil_scoped_acquire gil;

@@ -23,6 +23,9 @@ py::object to_python(const nlohmann::json& j);
 /// A Python object as JSON (through json.dumps: what it cannot encode is a palp.ConfigError).
 nlohmann::json to_json(py::handle o);
 
+/// A timeout in seconds as milliseconds (rounded); ConfigError when not >= 0.
+std::chrono::milliseconds timeout_of(double seconds);
+
 /// A catalogue enum value's name ("idle"), or "unknown (<value>)".
 template <class E>
 std::string enum_text(E value) {

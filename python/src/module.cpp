@@ -17,4 +17,6 @@ PYBIND11_MODULE(_palp, m) {
   palp_python::bind_analysis(m);
   palp_python::bind_robot(m);
   palp_python::bind_trace(m);
+  palp_python::bind_calibration(m);
+  palp_python::bind_log(m);
 }

@@ -15,16 +15,11 @@ namespace {
 using palp::Probe;
 using release = py::call_guard<py::gil_scoped_release>;
 
-std::chrono::milliseconds ms(double seconds) {
-  if (!(seconds >= 0)) throw palp::ConfigError("a timeout must be >= 0 s, got " + std::to_string(seconds));
-  return std::chrono::milliseconds(static_cast<long long>(seconds * 1e3 + 0.5));
-}
-
 /// Probe::wait in slices of at most half a second, Ctrl-C checked between them: an interrupt
 /// stops the program (the coil goes to 0 A) and raises KeyboardInterrupt.
 palp::ProgramResult wait_interruptibly(Probe& probe, double timeout_s) {
   Interrupt interrupt;
-  const auto end = std::chrono::steady_clock::now() + ms(timeout_s);
+  const auto end = std::chrono::steady_clock::now() + timeout_of(timeout_s);
   {
     py::gil_scoped_release unlocked;
     for (;;) {
@@ -46,7 +41,7 @@ palp::ProgramResult wait_interruptibly(Probe& probe, double timeout_s) {
 }
 
 template <class P>
-void def_program(py::class_<Probe>& cls) {
+void def_program(py::class_<Probe, ProbeHolder>& cls) {
   cls.def("load", [](Probe& p, const P& program) { p.load(program); }, py::arg("program"), release());
   cls.def(
       "run",
@@ -136,16 +131,17 @@ void bind_probe(py::module_& m) {
   m.def("list_devices", [] { return palp::list_devices(); }, release(),
         "Every palp controller on this machine's USB; [] when there is none.");
 
-  py::class_<Probe> cls(m, "Probe", "One connection to a probe controller (usb://, hid://, sim://, ...).");
+  py::class_<Probe, ProbeHolder> cls(
+      m, "Probe", "One connection to a probe controller (usb://, hid://, sim://, ...).");
   cls.def(py::init([](const std::string& uri, double timeout_s, bool reconnect) {
             palp::ConnectOptions o;
-            o.timeout = ms(timeout_s);
+            o.timeout = timeout_of(timeout_s);
             o.reconnect = reconnect;
             o.host_software = std::string("palp-python ") + palp::sdk_version();
-            std::unique_ptr<Probe> p;
+            ProbeHolder p;
             {
               py::gil_scoped_release r;
-              p = std::make_unique<Probe>(uri, o);
+              p.reset(new Probe(uri, o));
             }
             return p;
           }),

@@ -77,8 +77,13 @@ void bind_record(py::module_& m) {
       .def_readonly("interrupted", &RecordResult::interrupted)
       .def_readonly("program", &RecordResult::program)
       .def_property_readonly(
-          "sidecar_written", [](const RecordResult& r) { return to_python(palp::sidecar_to_json(r.sidecar_written)); },
-          "The sidecar as written (the dict Recording.sidecar reads back).");
+          "sidecar_written",
+          [](const RecordResult& r) -> py::object {
+            if (!r.written) return py::none();
+            return to_python(palp::sidecar_to_json(r.sidecar_written));
+          },
+          "The sidecar as written, csv_rows, csv_crc32 and created_utc included (the dict "
+          "Recording.sidecar reads back); None when nothing was written.");
 
   m.def("record", &record, py::arg("probe"), py::arg("out"), py::kw_only(), py::arg("duration_s") = 0.0,
         py::arg("rate_Hz") = 1000.0, py::arg("program") = py::none(), py::arg("zero_current") = false,

@@ -42,12 +42,14 @@ palp::StiffnessMap map_plan(palp::Probe& probe, palp::Robot& robot, const palp::
 }  // namespace
 
 void bind_robot(py::module_& m) {
-  py::class_<palp::Robot>(m, "Robot", "The robot bridge client (modbus://host:port).")
-      .def(py::init([](const std::string& uri) {
-             py::gil_scoped_release release;
-             return palp::connect_robot(uri);
-           }),
-           py::arg("uri"), "Connects and checks the bridge's magic and version (RobotLinkError when unreachable).");
+  RobotClass robot(m, "Robot", "The robot bridge client (modbus://host:port).");
+  robot.def(py::init([](const std::string& uri) {
+              py::gil_scoped_release release;
+              return RobotHolder(palp::connect_robot(uri).release());
+            }),
+            py::arg("uri"),
+            "Connects and checks the bridge's magic and version (RobotLinkError: unreachable).");
+  bind_robot_motions(m, robot);
 
   py::class_<palp::Rig>(m, "Rig", "A rig file: the robot, the probe, the tool and the work object.")
       .def_readonly("robot_uri", &palp::Rig::robot_uri)

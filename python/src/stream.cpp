@@ -108,7 +108,7 @@ void bind_stream(py::module_& m) {
       .def_readonly("batch_samples", &palp::StreamInfo::batch_samples)
       .def_readonly("wire_bytes_per_s", &palp::StreamInfo::wire_bytes_per_s);
 
-  auto probe = py::class_<palp::Probe>(m.attr("Probe"));
+  auto probe = py::class_<palp::Probe, ProbeHolder>(m.attr("Probe"));
   using release = py::call_guard<py::gil_scoped_release>;
   probe
       .def(

@@ -33,6 +33,24 @@ def test_a_linear_spring_gives_its_stiffness():
     assert summary["repetitions"] == 2
 
 
+def test_pressure_gives_each_recorded_channels_slope_against_the_object_force():
+    columns = linear_spring_recording(2000.0)
+    force_N = 2000.0 * np.maximum(columns["z_mm"] - 1.0, 0.0) * 1e-3  # F_o = k (z - z_c)
+    columns["p2_Pa"] = 40.0 * force_N  # only channels 2 and 5 recorded
+    columns["p5_Pa"] = 100.0 * force_N
+    result = palp.analyze.pressure(columns)
+    assert [c["channel"] for c in result["channels"]] == [2, 5]
+    assert result["channels"][0]["slope_Pa_per_N"] == pytest.approx(40.0, rel=1e-3)
+    assert result["channels"][1]["slope_Pa_per_N"] == pytest.approx(100.0, rel=1e-3)
+    assert result["contact_point_mm"] == pytest.approx(1.0, abs=1e-3)
+    assert result["params"]["kf_N_per_A"] == K_F
+
+
+def test_pressure_without_pressure_columns_is_a_data_error_saying_so():
+    with pytest.raises(palp.DataError, match=r"no pressure column \(p1_Pa \.\. p6_Pa\)"):
+        palp.analyze.pressure(linear_spring_recording(2000.0))
+
+
 def test_a_recording_written_and_read_back_analyses_the_same(tmp_path):
     columns = linear_spring_recording(1000.0)
     palp.write_recording(str(tmp_path / "spring"), palp.Recording(columns))

@@ -46,6 +46,14 @@ def test_indentation_result_equals_palpctls_analysis_of_the_recording_it_wrote(s
     del params["input"], params["kf_table"]
     assert offline.pop("params") == params
     assert offline == expected
+    # the pressure-force test: one SDK definition (pressure_analysis_of) behind the run's summary,
+    # palpctl analyze pressure and palp.analyze.pressure
+    expected_pressure = palpctl_json("analyze", "pressure", "--input", csv)
+    offline_pressure = palp.analyze.pressure(csv)
+    assert [c["channel"] for c in offline_pressure["channels"]] == [1, 2, 3, 4, 5, 6]
+    for key in ("contact_point_mm", "n_loading", "channels"):
+        assert offline_pressure[key] == expected_pressure[key] == summary["pressure"][key], key
+    assert offline_pressure["params"] == params
 
 
 def test_settings_round_trip_through_the_result_json_parameters():
