@@ -22,8 +22,10 @@ palp::IdentificationPreset preset_of(const std::string& name) {
   if (name == "contact_stepped") return palp::IdentificationPreset::contact_stepped;
   if (name == "contact_multisine") return palp::IdentificationPreset::contact_multisine;
   if (name == "free_air") return palp::IdentificationPreset::free_air;
-  throw palp::ConfigError("identification preset \"" + name +
-                          "\": one of contact_stepped, contact_multisine, free_air");
+  if (name == "contact_multisine_fast") return palp::IdentificationPreset::contact_multisine_fast;
+  throw palp::ConfigError(
+      "identification preset \"" + name +
+      "\": one of contact_stepped, contact_multisine, free_air, contact_multisine_fast");
 }
 
 nlohmann::json summary_of(const IdentificationRun& r) {
@@ -65,7 +67,9 @@ void bind_identification(py::module_& m) {
   py::class_<IdentificationSettings>(m, "IdentificationSettings", "An identification's settings, SI.")
       .def(py::init<>())
       .def_static("preset", [](const std::string& name) { return IdentificationSettings::preset(preset_of(name)); },
-                  py::arg("name"), "\"contact_stepped\", \"contact_multisine\" or \"free_air\".")
+                  py::arg("name"),
+                  "\"contact_stepped\", \"contact_multisine\", \"free_air\" or "
+                  "\"contact_multisine_fast\" (<= 20 s of device time).")
       .def_static("from_dict",
                   [](const py::handle& d) { return palp::identification_settings_from_json(to_json(d)); },
                   py::arg("d"), "to_dict() read back.")

@@ -37,3 +37,11 @@ def test_settings_round_trip_through_their_dict():
     assert not s.in_contact
     back = palp.IdentificationSettings.from_dict(s.to_dict())
     assert back.to_dict() == s.to_dict()
+
+
+def test_the_fast_multisine_preset_is_bound_and_an_unknown_name_lists_the_presets():
+    fast = palp.IdentificationSettings.preset("contact_multisine_fast")
+    assert fast.method == "multisine" and fast.in_contact
+    with pytest.raises(palp.ConfigError, match="one of contact_stepped, contact_multisine, free_air, "
+                                               "contact_multisine_fast"):
+        palp.IdentificationSettings.preset("fast")
