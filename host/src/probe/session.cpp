@@ -39,7 +39,7 @@ proto::DeviceInfo hello(Transport& t, const std::string& host_software, std::uin
   h.host_software.assign(host_software.c_str());
   const auto r = exchange<proto::DeviceInfo>(
       t, h, seq, timeout, "the DeviceInfo reply to Hello",
-      "(is it a palp controller, and is its firmware running?)");
+      "(is it a palp controller, and is its firmware running?)", kSendAttempts);
   if (const auto* info = std::get_if<proto::DeviceInfo>(&r)) return *info;
   throw ProtocolError("the device answered Hello with a Nak from " + t.uri());
 }

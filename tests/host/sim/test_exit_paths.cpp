@@ -90,6 +90,39 @@ TEST(ExitPaths, ALostStatusReplyIsResentWithTheSameSeqAndAnswered) {
   EXPECT_EQ(seqs[0], seqs[1]);  // the copy carries the lost request's seq
 }
 
+TEST(ExitPaths, ALostHelloReplyIsResentWithTheSameSeqAndTheProbeConnects) {
+  InprocSimulator sim;
+  auto log = std::make_shared<LossyLink::Log>();
+  int hellos_lost = 0;
+  log->lose = [&](MessageId id, std::uint16_t) { return id == MessageId::Hello && hellos_lost++ == 0; };
+  palp::Probe probe(std::make_unique<LossyLink>(sim.transport(), log), quick());
+  EXPECT_EQ(probe.status().state, palp::proto::DeviceState::idle);
+  std::lock_guard lock(log->mu);
+  EXPECT_EQ(log->lost, 1);
+  std::vector<std::uint16_t> seqs;
+  for (const auto& s : log->sent)
+    if (s.id == MessageId::Hello) seqs.push_back(s.seq);
+  ASSERT_EQ(seqs.size(), 2u);  // without the resend: TimeoutError "the DeviceInfo reply to Hello"
+  EXPECT_EQ(seqs[0], seqs[1]);
+}
+
+TEST(ExitPaths, AHelloWhoseEveryReplyIsLostIsATimeoutNamingTheReplyAfterFourCopies) {
+  InprocSimulator sim;
+  auto log = std::make_shared<LossyLink::Log>();
+  log->lose = [](MessageId id, std::uint16_t) { return id == MessageId::Hello; };
+  try {
+    palp::Probe probe(std::make_unique<LossyLink>(sim.transport(), log), quick());
+    ADD_FAILURE() << "connected although every Hello reply was lost";
+  } catch (const palp::TimeoutError& e) {
+    EXPECT_NE(std::string(e.what()).find("the DeviceInfo reply to Hello from "), std::string::npos)
+        << e.what();
+  }
+  std::lock_guard lock(log->mu);
+  int hellos = 0;
+  for (const auto& s : log->sent) hellos += s.id == MessageId::Hello;
+  EXPECT_EQ(hellos, 4);  // kSendAttempts copies within the one timeout
+}
+
 TEST(ExitPaths, ALostProgramStartReplyIsATimeoutAfterOneCopy) {
   InprocSimulator sim({.phantom = "solid_1d", .mount_mm = {27, 0, -25}});
   auto log = std::make_shared<LossyLink::Log>();
