@@ -46,6 +46,7 @@ palp::StiffnessMap as_map(int rows, int columns, const std::vector<MeasuredCell>
   palp::StiffnessMap m;
   m.rows = rows;
   m.columns = columns;
+  m.adaptive = AdaptiveGridOptions{};  // analyze_map's line means from the additive fit
   for (const MeasuredCell& c : measured) {
     palp::MapPoint p;
     p.row = c.row;
