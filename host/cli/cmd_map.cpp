@@ -116,7 +116,10 @@ int map(const Context& ctx, const MapCli& o) {
                                                                         : palp::IndentationPreset::two_d);
   if (o.repetitions) options.settings.repetitions = *o.repetitions;
   options.resume = o.resume;
-  if (o.adaptive) options.adaptive = palp::analysis::AdaptiveGridOptions{o.max_points, o.threshold, 0};
+  if (o.adaptive) {
+    options.adaptive = palp::analysis::AdaptiveGridOptions{o.max_points, o.threshold, 0};
+    options.adaptive->validate(plan.grid.rows, plan.grid.columns);  // before connecting: exit 2
+  }
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
@@ -246,7 +249,7 @@ void add_map_command(CLI::App& app, Context& ctx) {
                 "Measure only some points: a space-filling coarse design (every row and column), then "
                 "refinement where neighbouring k_fd differ by more than --threshold, up to "
                 "--max-points (map.json lists the points measured, in order)");
-  cmd->add_option("--max-points", o->max_points, "--adaptive: the point budget (0: half the grid)")
+  cmd->add_option("--max-points", o->max_points, "--adaptive: the point budget (0: half the grid, at least the coarse design)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_option("--threshold", o->threshold,

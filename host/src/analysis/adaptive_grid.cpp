@@ -15,7 +15,9 @@ namespace palp::analysis {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& problem) { throw ConfigError("adaptive grid: " + problem); }
+[[noreturn]] void fail(const std::string& problem) {
+  throw ConfigError("adaptive grid: " + problem);
+}
 
 int squared_distance(const GridCell& a, const GridCell& b) {
   const int dr = a.row - b.row, dc = a.column - b.column;
@@ -29,7 +31,8 @@ int chebyshev(const GridCell& a, const GridCell& b) {
 std::vector<GridCell> lattice(int rows, int columns, int n, int g) {
   std::vector<GridCell> out;
   for (long k = 0; k < n; ++k)
-    out.push_back({static_cast<int>(k * rows / n) + 1, static_cast<int>((g * k) % n * columns / n) + 1});
+    out.push_back(
+        {static_cast<int>(k * rows / n) + 1, static_cast<int>((g * k) % n * columns / n) + 1});
   return out;
 }
 
@@ -45,19 +48,20 @@ void AdaptiveGridOptions::validate(int rows, int columns) const {
   const int total = rows * columns;
   if (max_points < 0 || max_points > total)
     fail("max_points " + std::to_string(max_points) + " is not in 0.." + std::to_string(total) +
-         " (0: half the grid)");
+         " (0: half the grid, at least the coarse design)");
   if (coarse_points < 0 || coarse_points > total)
-    fail("coarse_points " + std::to_string(coarse_points) + " is not in 0.." + std::to_string(total) +
-         " (0: max(rows, columns))");
+    fail("coarse_points " + std::to_string(coarse_points) + " is not in 0.." +
+         std::to_string(total) + " (0: max(rows, columns))");
   if (!(threshold > 0.0 && threshold < 1.0))
     fail("threshold " + std::to_string(threshold) + " is not in (0, 1) (0.1: 10 %)");
   if (coarse_size(rows, columns) > budget(rows, columns))
-    fail("the coarse design's " + std::to_string(coarse_size(rows, columns)) + " points exceed the budget of " +
-         std::to_string(budget(rows, columns)) + " (raise max_points)");
+    fail("the coarse design's " + std::to_string(coarse_size(rows, columns)) +
+         " points exceed the budget of " + std::to_string(budget(rows, columns)) +
+         " (raise max_points)");
 }
 
 int AdaptiveGridOptions::budget(int rows, int columns) const {
-  return max_points > 0 ? max_points : std::max(1, rows * columns / 2);
+  return max_points > 0 ? max_points : std::max(coarse_size(rows, columns), rows * columns / 2);
 }
 
 int AdaptiveGridOptions::coarse_size(int rows, int columns) const {
@@ -67,8 +71,8 @@ int AdaptiveGridOptions::coarse_size(int rows, int columns) const {
 std::vector<GridCell> coarse_design(int rows, int columns, int n) {
   check_grid(rows, columns);
   if (n < 1 || n > rows * columns)
-    fail(std::to_string(n) + " coarse points for a " + std::to_string(rows) + " x " + std::to_string(columns) +
-         " grid");
+    fail(std::to_string(n) + " coarse points for a " + std::to_string(rows) + " x " +
+         std::to_string(columns) + " grid");
   // the generator: coprime to n, the largest smallest distance between the design's points
   // (distinct points first: with n > max(rows, columns) some generators repeat a cell)
   std::vector<GridCell> best;
@@ -78,7 +82,8 @@ std::vector<GridCell> coarse_design(int rows, int columns, int n) {
     const std::vector<GridCell> d = lattice(rows, columns, n, g);
     int closest = rows * rows + columns * columns;
     for (std::size_t i = 0; i < d.size(); ++i)
-      for (std::size_t j = i + 1; j < d.size(); ++j) closest = std::min(closest, squared_distance(d[i], d[j]));
+      for (std::size_t j = i + 1; j < d.size(); ++j)
+        closest = std::min(closest, squared_distance(d[i], d[j]));
     const long key = closest;  // 0 when a cell repeats
     if (key > best_key) best_key = key, best = d;
   }
@@ -111,10 +116,14 @@ AdaptiveStep next_adaptive_point(int rows, int columns, const AdaptiveGridOption
       fail("measured point (row " + std::to_string(m.row) + ", column " + std::to_string(m.column) +
            ") outside the " + std::to_string(rows) + " x " + std::to_string(columns) + " grid");
     char& d = done[static_cast<std::size_t>((m.row - 1) * columns + m.column - 1)];
-    if (d) fail("point (row " + std::to_string(m.row) + ", column " + std::to_string(m.column) + ") measured twice");
+    if (d)
+      fail("point (row " + std::to_string(m.row) + ", column " + std::to_string(m.column) +
+           ") measured twice");
     d = 1;
   }
-  auto is_done = [&](const GridCell& c) { return done[static_cast<std::size_t>((c.row - 1) * columns + c.column - 1)] != 0; };
+  auto is_done = [&](const GridCell& c) {
+    return done[static_cast<std::size_t>((c.row - 1) * columns + c.column - 1)] != 0;
+  };
   AdaptiveStep step;
   if (static_cast<int>(measured.size()) >= o.budget(rows, columns)) {
     step.phase = "budget";
@@ -135,9 +144,11 @@ AdaptiveStep next_adaptive_point(int rows, int columns, const AdaptiveGridOption
     int crowd;  ///< the points measured in its row and its column
     double difference;
   };
-  std::vector<int> in_row(static_cast<std::size_t>(rows), 0), in_column(static_cast<std::size_t>(columns), 0);
+  std::vector<int> in_row(static_cast<std::size_t>(rows), 0),
+      in_column(static_cast<std::size_t>(columns), 0);
   for (const MeasuredCell& m : measured)
-    ++in_row[static_cast<std::size_t>(m.row - 1)], ++in_column[static_cast<std::size_t>(m.column - 1)];
+    ++in_row[static_cast<std::size_t>(m.row - 1)],
+        ++in_column[static_cast<std::size_t>(m.column - 1)];
   std::optional<Candidate> best;
   for (int r = 1; r <= rows; ++r)
     for (int c = 1; c <= columns; ++c) {
@@ -155,7 +166,8 @@ AdaptiveStep next_adaptive_point(int rows, int columns, const AdaptiveGridOption
       if (!(hi > 0.0) || !(lo <= hi)) continue;
       const double difference = 1.0 - lo / hi;
       if (!(difference > o.threshold)) continue;
-      const int crowd = in_row[static_cast<std::size_t>(r - 1)] + in_column[static_cast<std::size_t>(c - 1)];
+      const int crowd =
+          in_row[static_cast<std::size_t>(r - 1)] + in_column[static_cast<std::size_t>(c - 1)];
       // row-major scan: a later point wins only by a larger gap, or the same gap and fewer measured
       // points around it, or those and a larger difference
       if (!best || gap > best->gap || (gap == best->gap && crowd < best->crowd) ||
@@ -175,12 +187,15 @@ AdaptiveStep next_adaptive_point(int rows, int columns, const AdaptiveGridOption
 LineMeans line_means(int rows, int columns, const std::vector<MeasuredCell>& measured) {
   check_grid(rows, columns);
   std::vector<const MeasuredCell*> used;
-  std::vector<char> row_has(static_cast<std::size_t>(rows), 0), column_has(static_cast<std::size_t>(columns), 0);
+  std::vector<char> row_has(static_cast<std::size_t>(rows), 0),
+      column_has(static_cast<std::size_t>(columns), 0);
   for (const MeasuredCell& m : measured) {
-    if (m.row < 1 || m.row > rows || m.column < 1 || m.column > columns || !m.value || !std::isfinite(*m.value))
+    if (m.row < 1 || m.row > rows || m.column < 1 || m.column > columns || !m.value ||
+        !std::isfinite(*m.value))
       continue;
     used.push_back(&m);
-    row_has[static_cast<std::size_t>(m.row - 1)] = column_has[static_cast<std::size_t>(m.column - 1)] = 1;
+    row_has[static_cast<std::size_t>(m.row - 1)] =
+        column_has[static_cast<std::size_t>(m.column - 1)] = 1;
   }
   LineMeans out;
   out.row.assign(static_cast<std::size_t>(rows), NAN);
@@ -199,12 +214,15 @@ LineMeans line_means(int rows, int columns, const std::vector<MeasuredCell>& mea
     y(k) = *used[i]->value;
   }
   for (int r = 1; r <= rows; ++r) A(eq - 2, r) = row_has[static_cast<std::size_t>(r - 1)] ? 1 : 0;
-  for (int c = 1; c <= columns; ++c) A(eq - 1, rows + c) = column_has[static_cast<std::size_t>(c - 1)] ? 1 : 0;
+  for (int c = 1; c <= columns; ++c)
+    A(eq - 1, rows + c) = column_has[static_cast<std::size_t>(c - 1)] ? 1 : 0;
   const Eigen::VectorXd x = A.completeOrthogonalDecomposition().solve(y);
   for (int r = 1; r <= rows; ++r)
-    if (row_has[static_cast<std::size_t>(r - 1)]) out.row[static_cast<std::size_t>(r - 1)] = x(0) + x(r);
+    if (row_has[static_cast<std::size_t>(r - 1)])
+      out.row[static_cast<std::size_t>(r - 1)] = x(0) + x(r);
   for (int c = 1; c <= columns; ++c)
-    if (column_has[static_cast<std::size_t>(c - 1)]) out.column[static_cast<std::size_t>(c - 1)] = x(0) + x(rows + c);
+    if (column_has[static_cast<std::size_t>(c - 1)])
+      out.column[static_cast<std::size_t>(c - 1)] = x(0) + x(rows + c);
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "palp/analysis/adaptive_grid.hpp"
@@ -14,6 +15,7 @@
 #include "palp/probe.hpp"
 #include "palp/robot.hpp"
 #include "palp/sim_inproc.hpp"
+#include "palp/tidy_csv.hpp"
 #include "sanitized.hpp"
 #include "trace_sim.hpp"
 
@@ -40,14 +42,16 @@ void expect_planner_order(const palp::StiffnessMap& m) {
   std::vector<palp::analysis::MeasuredCell> before;
   for (const palp::MapPoint& p : m.points) {
     const auto s = palp::analysis::next_adaptive_point(m.rows, m.columns, *m.adaptive, before);
-    ASSERT_TRUE(s.next.has_value()) << "after " << before.size() << " points the planner is done (" << s.phase << ")";
+    ASSERT_TRUE(s.next.has_value())
+        << "after " << before.size() << " points the planner is done (" << s.phase << ")";
     EXPECT_EQ(*s.next, (palp::analysis::GridCell{p.row, p.column})) << "point " << before.size();
     before.push_back({p.row, p.column, p.k_fd_N_per_m});
   }
 }
 
 TEST(MapAdaptive, ThePadsSoftColumns258AreFoundWithAtMostFortyOfTheEightyOnePoints) {
-  if (palp::sim::test::kSanitized) GTEST_SKIP() << "40 indentations of 12.5 s device time: the release build runs it";
+  if (palp::sim::test::kSanitized)
+    GTEST_SKIP() << "40 indentations of 12.5 s device time: the release build runs it";
   InprocSimulator sim({.phantom = "pad_2d", .robot = true});
   palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
@@ -56,7 +60,8 @@ TEST(MapAdaptive, ThePadsSoftColumns258AreFoundWithAtMostFortyOfTheEightyOnePoin
   o.settings.repetitions = 1;
   o.adaptive = palp::analysis::AdaptiveGridOptions{};  // half the grid (40), 10 %, 9 coarse points
   const double t0 = sim.virtual_s();
-  const palp::StiffnessMap m = palp::map_plan(probe, *robot, adaptive_pad_rig(sim), palp::trace_test::pad_plan(9), dir, o);
+  const palp::StiffnessMap m =
+      palp::map_plan(probe, *robot, adaptive_pad_rig(sim), palp::trace_test::pad_plan(9), dir, o);
   const double device_s = sim.virtual_s() - t0;
   ASSERT_TRUE(m.complete) << m.stopped_because;
   EXPECT_LE(m.points.size(), 40u);
@@ -74,11 +79,12 @@ TEST(MapAdaptive, ThePadsSoftColumns258AreFoundWithAtMostFortyOfTheEightyOnePoin
   const palp::StiffnessMap back = palp::load_map(dir);
   expect_planner_order(back);
   const double per_point = device_s / static_cast<double>(m.points.size());
-  std::printf("adaptive 9 x 9: %zu of 81 points (%s), device time %.0f s (%.1f s a point); the full grid "
-              "at that rate %.0f s: %.0f s (%.0f %%) saved; soft columns' contrast (min) %.1f %%\n",
-              m.points.size(), m.adaptive_ended.c_str(), device_s, per_point, 81 * per_point,
-              (81 - static_cast<double>(m.points.size())) * per_point,
-              100.0 * (81 - static_cast<double>(m.points.size())) / 81, 100 * contrast);
+  std::printf(
+      "adaptive 9 x 9: %zu of 81 points (%s), device time %.0f s (%.1f s a point); the full grid "
+      "at that rate %.0f s: %.0f s (%.0f %%) saved; soft columns' contrast (min) %.1f %%\n",
+      m.points.size(), m.adaptive_ended.c_str(), device_s, per_point, 81 * per_point,
+      (81 - static_cast<double>(m.points.size())) * per_point,
+      100.0 * (81 - static_cast<double>(m.points.size())) / 81, 100 * contrast);
   std::filesystem::remove_all(dir);
 }
 
@@ -96,7 +102,8 @@ TEST(MapAdaptive, AStoppedAdaptiveMapResumesWithThePlannersDecisionsAndRefusesOt
   std::size_t done = 0;
   o.progress = [&](const palp::MapProgress& p) { done = p.done; };
   o.cancelled = [&] { return done >= 5; };
-  const palp::StiffnessMap part = palp::map_plan(probe, *robot, adaptive_pad_rig(sim), plan, dir, o);
+  const palp::StiffnessMap part =
+      palp::map_plan(probe, *robot, adaptive_pad_rig(sim), plan, dir, o);
   EXPECT_FALSE(part.complete);
   EXPECT_EQ(part.stopped_because, "cancelled");
   ASSERT_EQ(part.points.size(), 5u);
@@ -108,13 +115,15 @@ TEST(MapAdaptive, AStoppedAdaptiveMapResumesWithThePlannersDecisionsAndRefusesOt
     palp::map_plan(probe, *robot, adaptive_pad_rig(sim), plan, dir, o);
     ADD_FAILURE() << "resumed with another threshold";
   } catch (const palp::ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), (dir / "map.json").string() +
-                                         ": an adaptive map with max_points 13, threshold 0.1, coarse_points 9; it "
-                                         "resumes with the same options (or none), not max_points 13, threshold "
-                                         "0.2, coarse_points 9");
+    EXPECT_EQ(std::string(e.what()),
+              (dir / "map.json").string() +
+                  ": an adaptive map with max_points 13, threshold 0.1, coarse_points 9; it "
+                  "resumes with the same options (or none), not max_points 13, threshold "
+                  "0.2, coarse_points 9");
   }
   o.adaptive.reset();  // none: as map.json says
-  const palp::StiffnessMap whole = palp::map_plan(probe, *robot, adaptive_pad_rig(sim), plan, dir, o);
+  const palp::StiffnessMap whole =
+      palp::map_plan(probe, *robot, adaptive_pad_rig(sim), plan, dir, o);
   ASSERT_TRUE(whole.complete) << whole.stopped_because;
   ASSERT_TRUE(whole.adaptive.has_value());
   EXPECT_EQ(whole.adaptive->max_points, 13);
@@ -132,9 +141,20 @@ TEST(MapAdaptive, AStoppedAdaptiveMapResumesWithThePlannersDecisionsAndRefusesOt
   }
   // the coarse design covered all nine columns and all three rows first
   std::set<int> rows, columns;
-  for (std::size_t k = 0; k < 9; ++k) rows.insert(back.points[k].row), columns.insert(back.points[k].column);
+  for (std::size_t k = 0; k < 9; ++k)
+    rows.insert(back.points[k].row), columns.insert(back.points[k].column);
   EXPECT_EQ(rows.size(), 3u);
   EXPECT_EQ(columns.size(), 9u);
+  // the tidy CSV: a row for every grid point, the ones not chosen saying so
+  const palp::TidyCsvExport e = palp::export_tidy_csv(dir, dir / "export" / "map.csv");
+  EXPECT_EQ(e.points, 27u);
+  EXPECT_EQ(e.rows, 27u);  // one repetition a measured point, one row an unmeasured one
+  std::ifstream in(dir / "export" / "map.csv");
+  std::size_t not_chosen = 0;
+  for (std::string line; std::getline(in, line);)
+    not_chosen +=
+        line.find("not measured: the adaptive map did not choose this point") != std::string::npos;
+  EXPECT_EQ(not_chosen, 27 - back.points.size());
   std::filesystem::remove_all(dir);
 }
 

@@ -24,16 +24,18 @@ using Field = std::function<std::optional<double>(int, int)>;
 /// The pad's pattern (k_fd N/m): columns 2, 5, 8 25 % softer, rows 2, 5, 8 (deep channels) 3 %,
 /// and a deterministic +-1 % ripple standing in for noise.
 std::optional<double> pad(int r, int c) {
-  const double col = (c == 2 || c == 5 || c == 8) ? 0.75 : 1.0, row = (r == 2 || r == 5 || r == 8) ? 0.97 : 1.0;
+  const double col = (c == 2 || c == 5 || c == 8) ? 0.75 : 1.0,
+               row = (r == 2 || r == 5 || r == 8) ? 0.97 : 1.0;
   return 3000.0 * col * row * (1.0 + 0.01 * std::sin(7.0 * r + 3.0 * c));
 }
 
 /// Runs the planner to its end, measuring `field`; the points in measurement order.
-std::vector<MeasuredCell> run(int rows, int columns, const AdaptiveGridOptions& o, const Field& field,
-                              std::string* ended = nullptr) {
+std::vector<MeasuredCell> run(int rows, int columns, const AdaptiveGridOptions& o,
+                              const Field& field, std::string* ended = nullptr) {
   std::vector<MeasuredCell> measured;
   for (;;) {
-    const palp::analysis::AdaptiveStep s = palp::analysis::next_adaptive_point(rows, columns, o, measured);
+    const palp::analysis::AdaptiveStep s =
+        palp::analysis::next_adaptive_point(rows, columns, o, measured);
     if (!s.next) {
       if (ended) *ended = s.phase;
       return measured;
@@ -58,13 +60,15 @@ palp::StiffnessMap as_map(int rows, int columns, const std::vector<MeasuredCell>
 }
 
 TEST(AdaptiveGrid, TheCoarseDesignSamplesEveryRowAndEveryColumnOnce) {
-  for (const auto& [rows, columns] : {std::pair{9, 9}, {3, 9}, {9, 3}, {5, 4}, {1, 7}, {2, 2}, {6, 10}}) {
+  for (const auto& [rows, columns] :
+       {std::pair{9, 9}, {3, 9}, {9, 3}, {5, 4}, {1, 7}, {2, 2}, {6, 10}}) {
     const int n = std::max(rows, columns);
     const auto d = palp::analysis::coarse_design(rows, columns, n);
     ASSERT_EQ(d.size(), static_cast<std::size_t>(n)) << rows << " x " << columns;
     std::set<int> r, c;
     std::set<std::pair<int, int>> cells;
-    for (const GridCell& g : d) r.insert(g.row), c.insert(g.column), cells.insert({g.row, g.column});
+    for (const GridCell& g : d)
+      r.insert(g.row), c.insert(g.column), cells.insert({g.row, g.column});
     EXPECT_EQ(r.size(), static_cast<std::size_t>(rows)) << rows << " x " << columns;
     EXPECT_EQ(c.size(), static_cast<std::size_t>(columns)) << rows << " x " << columns;
     EXPECT_EQ(cells.size(), d.size()) << "a cell twice, " << rows << " x " << columns;
@@ -99,28 +103,34 @@ TEST(AdaptiveGrid, OnThePadPatternItFindsColumns258SoftWithinFortyPointsAtTheFul
   std::vector<MeasuredCell> full;
   for (int r = 1; r <= 9; ++r)
     for (int c = 1; c <= 9; ++c) full.push_back({r, c, pad(r, c)});
-  const palp::MapAnalysis a = palp::analyze_map(as_map(9, 9, m), 0.1), f = palp::analyze_map(as_map(9, 9, full), 0.1);
+  const palp::MapAnalysis a = palp::analyze_map(as_map(9, 9, m), 0.1),
+                          f = palp::analyze_map(as_map(9, 9, full), 0.1);
   EXPECT_EQ(a.soft_columns, f.soft_columns);
   EXPECT_EQ(a.soft_columns, (std::vector<int>{2, 5, 8}));
   EXPECT_TRUE(a.soft_rows.empty() && a.stiff_rows.empty() && a.stiff_columns.empty());
   // every column measured at least three times
   for (int c = 1; c <= 9; ++c)
-    EXPECT_GE(std::count_if(m.begin(), m.end(), [c](const MeasuredCell& p) { return p.column == c; }), 3) << c;
+    EXPECT_GE(
+        std::count_if(m.begin(), m.end(), [c](const MeasuredCell& p) { return p.column == c; }), 3)
+        << c;
 }
 
 TEST(AdaptiveGrid, AUniformFieldStopsAfterTheCoarseDesignAndAStepRefinesAlongItsEdge) {
   AdaptiveGridOptions o;
   std::string ended;
-  const auto uniform = run(9, 9, o, [](int r, int c) { return 3000.0 * (1.0 + 0.01 * std::sin(r + 2.0 * c)); }, &ended);
+  const auto uniform = run(
+      9, 9, o, [](int r, int c) { return 3000.0 * (1.0 + 0.01 * std::sin(r + 2.0 * c)); }, &ended);
   EXPECT_EQ(ended, "converged");
   EXPECT_EQ(uniform.size(), 9u);
   // a step between columns 4 and 5 (half as stiff right of it): every refined point lies within the
   // covering radius (3) of points on both sides, i.e. in columns 2..7, and those fill up first
   o.max_points = 60;
-  const auto step = run(9, 9, o, [](int, int c) { return c <= 4 ? 3000.0 : 1500.0; }, &ended);
+  const auto step = run(
+      9, 9, o, [](int, int c) { return c <= 4 ? 3000.0 : 1500.0; }, &ended);
   EXPECT_EQ(ended, "converged");
   for (std::size_t k = 9; k < step.size(); ++k)
-    EXPECT_TRUE(step[k].column >= 2 && step[k].column <= 7) << "point " << k << " at column " << step[k].column;
+    EXPECT_TRUE(step[k].column >= 2 && step[k].column <= 7)
+        << "point " << k << " at column " << step[k].column;
   EXPECT_EQ(step.size(), 9u + 6 * 9 - 6);  // the coarse design's 9, then all of columns 2..7
 }
 
@@ -145,7 +155,9 @@ TEST(AdaptiveGrid, APointWithoutStiffnessCountsAgainstTheBudgetAndIsNotMeasuredA
     return pad(r, c);
   });
   EXPECT_EQ(m.size(), 20u);
-  EXPECT_EQ(std::count_if(m.begin(), m.end(), [](const MeasuredCell& p) { return p.row == 2 && p.column == 3; }), 1);
+  EXPECT_EQ(std::count_if(m.begin(), m.end(),
+                          [](const MeasuredCell& p) { return p.row == 2 && p.column == 3; }),
+            1);
 }
 
 TEST(AdaptiveGrid, LineMeansOfAnUnevenSampleAreTheAdditiveModelsNotThePlainMeans) {
@@ -180,17 +192,25 @@ TEST(AdaptiveGrid, BadOptionsAndPointsAreRefusedNamingTheProblem) {
   };
   AdaptiveGridOptions o;
   o.threshold = 0;
-  EXPECT_EQ(message([&] { o.validate(9, 9); }), "adaptive grid: threshold 0.000000 is not in (0, 1) (0.1: 10 %)");
+  EXPECT_EQ(message([&] { o.validate(9, 9); }),
+            "adaptive grid: threshold 0.000000 is not in (0, 1) (0.1: 10 %)");
   o = {};
   o.max_points = 5;
-  EXPECT_EQ(message([&] { o.validate(9, 9); }),
-            "adaptive grid: the coarse design's 9 points exceed the budget of 5 (raise max_points)");
+  EXPECT_EQ(
+      message([&] { o.validate(9, 9); }),
+      "adaptive grid: the coarse design's 9 points exceed the budget of 5 (raise max_points)");
   o.max_points = 82;
-  EXPECT_EQ(message([&] { o.validate(9, 9); }), "adaptive grid: max_points 82 is not in 0..81 (0: half the grid)");
+  EXPECT_EQ(message([&] { o.validate(9, 9); }),
+            "adaptive grid: max_points 82 is not in 0..81 (0: half the grid, at least the coarse "
+            "design)");
   o = {};
-  EXPECT_EQ(message([&] { palp::analysis::next_adaptive_point(9, 9, o, {{1, 1, 1.0}, {1, 1, 2.0}}); }),
+  EXPECT_EQ(message([&] {
+              palp::analysis::next_adaptive_point(9, 9, o, {{1, 1, 1.0}, {1, 1, 2.0}});
+            }),
             "adaptive grid: point (row 1, column 1) measured twice");
-  EXPECT_EQ(message([&] { palp::analysis::next_adaptive_point(9, 9, o, {{10, 1, 1.0}}); }),
+  EXPECT_EQ(message([&] {
+              palp::analysis::next_adaptive_point(9, 9, o, {{10, 1, 1.0}});
+            }),
             "adaptive grid: measured point (row 10, column 1) outside the 9 x 9 grid");
 }
 

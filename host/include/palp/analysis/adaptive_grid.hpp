@@ -20,8 +20,8 @@
 //    distance in grid steps: the biggest gaps first), then the one whose row and column hold the
 //    fewest measured points (the lines stay evenly sampled), then the one whose neighbours
 //    differ most, then the first in row-major order.
-// 3. It stops at the point budget (default floor(rows columns / 2)) or when nothing is flagged
-//    (a uniform specimen costs the coarse design only).
+// 3. It stops at the point budget (default floor(rows columns / 2), at least N0) or when
+//    nothing is flagged (a uniform specimen costs the coarse design only).
 // A point measured without a stiffness (a failed touch or analysis) counts against the budget,
 // is never measured again, and takes no part in the comparisons.
 //
@@ -40,9 +40,9 @@
 namespace palp::analysis {
 
 struct AdaptiveGridOptions {
-  int max_points = 0;     ///< the point budget; 0: floor(rows columns / 2)
-  double threshold = 0.1; ///< neighbours differing by more than this (1 - k_min / k_max) refine
-  int coarse_points = 0;  ///< N0, the coarse design's size; 0: max(rows, columns)
+  int max_points = 0;      ///< the point budget; 0: floor(rows columns / 2), at least coarse_points
+  double threshold = 0.1;  ///< neighbours differing by more than this (1 - k_min / k_max) refine
+  int coarse_points = 0;   ///< N0, the coarse design's size; 0: max(rows, columns)
 
   /// ConfigError naming the member: max_points or coarse_points < 0 or more than the grid,
   /// coarse_points above max_points (both resolved), threshold not in (0, 1).
@@ -59,8 +59,8 @@ struct GridCell {
 };
 
 struct MeasuredCell {
-  int row = 0, column = 0;       ///< 1-based
-  std::optional<double> value;   ///< the stiffness; absent when the point gave none
+  int row = 0, column = 0;      ///< 1-based
+  std::optional<double> value;  ///< the stiffness; absent when the point gave none
 };
 
 /// The coarse design's points in measurement order (n points, each row and column at least once
