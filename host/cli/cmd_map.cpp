@@ -101,11 +101,13 @@ json adaptive_json(const palp::StiffnessMap& m) {
 
 void print_adaptive(const palp::StiffnessMap& m) {
   const json j = adaptive_json(m);
-  std::printf("adaptive: %d of %d points measured (%.0f %% saved; coarse design %d, threshold %.0f %%, "
-              "budget %d, ended: %s); '-' marks points not measured or without a value\n",
-              j["points_measured"].get<int>(), j["grid_points"].get<int>(), j["points_saved_percent"].get<double>(),
-              m.adaptive->coarse_points, 100 * m.adaptive->threshold, m.adaptive->max_points,
-              m.adaptive_ended.empty() ? "not yet" : m.adaptive_ended.c_str());
+  std::printf(
+      "adaptive: %d of %d points measured (%.0f %% saved; coarse design %d, threshold %.0f %%, "
+      "budget %d, ended: %s); '-' marks points not measured or without a value\n",
+      j["points_measured"].get<int>(), j["grid_points"].get<int>(),
+      j["points_saved_percent"].get<double>(), m.adaptive->coarse_points,
+      100 * m.adaptive->threshold, m.adaptive->max_points,
+      m.adaptive_ended.empty() ? "not yet" : m.adaptive_ended.c_str());
 }
 
 int map(const Context& ctx, const MapCli& o) {
@@ -125,7 +127,8 @@ int map(const Context& ctx, const MapCli& o) {
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
-  const int planned = options.adaptive ? options.adaptive->budget(plan.grid.rows, plan.grid.columns) : plan.point_count();
+  const int planned = options.adaptive ? options.adaptive->budget(plan.grid.rows, plan.grid.columns)
+                                       : plan.point_count();
   Progress progress("map", static_cast<std::uint64_t>(planned), !ctx.json, "points");
   options.progress = [&](const palp::MapProgress& p) { progress.update(p.done); };
   const palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, o.out_dir, options);
@@ -245,16 +248,18 @@ void add_map_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--reps", o->repetitions, "Load/unload cycles at each point (default: the preset's, 3 or 5)")
       ->check(CLI::Range(1, 1000));
-  cmd->add_flag("--adaptive", o->adaptive,
-                "Measure only some points: a space-filling coarse design (every row and column), then "
-                "refinement where neighbouring k_fd differ by more than --threshold, up to "
-                "--max-points (map.json lists the points measured, in order)");
-  cmd->add_option("--max-points", o->max_points, "--adaptive: the point budget (0: half the grid, at least the coarse design)")
+  cmd->add_flag(
+      "--adaptive", o->adaptive,
+      "Measure only some points: a space-filling coarse design (every row and column), then "
+      "refinement where neighbouring k_fd differ by more than --threshold, up to "
+      "--max-points (map.json lists the points measured, in order)");
+  cmd->add_option("--max-points", o->max_points,
+                  "--adaptive: the point budget (0: half the grid, at least the coarse design)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->add_option("--threshold", o->threshold,
-                  "--adaptive: refine where neighbours differ by more than this fraction (1 - k_min / k_max; "
-                  "0.1: 10 %, as analyze map's --contrast)")
+                  "--adaptive: refine where neighbours differ by more than this fraction "
+                  "(1 - k_min / k_max; 0.1: 10 %, as analyze map's --contrast)")
       ->check(CLI::Range(0.001, 0.999))
       ->capture_default_str();
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });

@@ -169,7 +169,8 @@ TEST_F(PalpctlExitMap, AnAdaptiveBudgetBelowTheCoarseDesignIsRefusedBeforeAnythi
   const auto r = run(args);
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
-            "palpctl: adaptive grid: the coarse design's 3 points exceed the budget of 2 (raise max_points)");
+            "palpctl: adaptive grid: the coarse design's 3 points exceed the budget of 2 (raise "
+            "max_points)");
   EXPECT_FALSE(fs::exists(dir_ / "m" / "map.json"));
 }
 

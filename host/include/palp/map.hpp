@@ -64,7 +64,7 @@ struct StiffnessMap {
   std::exception_ptr stopped_error;
   // adaptive: the planner's options (absent: the regular grid, every point) and why it ended
   std::optional<analysis::AdaptiveGridOptions> adaptive;
-  std::string adaptive_ended;          ///< "budget" or "converged" once complete (adaptive_grid.hpp)
+  std::string adaptive_ended;          ///< "budget" or "converged" once complete
 };
 
 struct MapProgress {

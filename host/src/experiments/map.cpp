@@ -75,7 +75,8 @@ json map_to_json(const StiffnessMap& m) {
 namespace {
 
 /// The options with their defaults resolved (as map.json keeps them), validated for the grid.
-analysis::AdaptiveGridOptions resolved(const analysis::AdaptiveGridOptions& o, int rows, int columns) {
+analysis::AdaptiveGridOptions resolved(const analysis::AdaptiveGridOptions& o, int rows,
+                                       int columns) {
   o.validate(rows, columns);
   analysis::AdaptiveGridOptions r = o;
   r.max_points = o.budget(rows, columns);
@@ -86,15 +87,16 @@ analysis::AdaptiveGridOptions resolved(const analysis::AdaptiveGridOptions& o, i
 std::string adaptive_text(const analysis::AdaptiveGridOptions& o) {
   char threshold[32];
   std::snprintf(threshold, sizeof threshold, "%g", o.threshold);
-  return "max_points " + std::to_string(o.max_points) + ", threshold " + threshold + ", coarse_points " +
-         std::to_string(o.coarse_points);
+  return "max_points " + std::to_string(o.max_points) + ", threshold " + threshold +
+         ", coarse_points " + std::to_string(o.coarse_points);
 }
 
 /// The planner's next point after the map's points (absent: done, with why in `ended`).
 std::optional<analysis::GridCell> next_adaptive(const StiffnessMap& m, std::string& ended) {
   std::vector<analysis::MeasuredCell> measured;
   for (const MapPoint& p : m.points) measured.push_back({p.row, p.column, p.k_fd_N_per_m});
-  const analysis::AdaptiveStep s = analysis::next_adaptive_point(m.rows, m.columns, *m.adaptive, measured);
+  const analysis::AdaptiveStep s =
+      analysis::next_adaptive_point(m.rows, m.columns, *m.adaptive, measured);
   if (!s.next) ended = s.phase;
   return s.next;
 }
@@ -132,7 +134,8 @@ class Mapper {
         throw ConfigError(file.string() + ": a regular map; it resumes without adaptive options");
       if (adaptive && *adaptive != *m.adaptive)
         throw ConfigError(file.string() + ": an adaptive map with " + adaptive_text(*m.adaptive) +
-                          "; it resumes with the same options (or none), not " + adaptive_text(*adaptive));
+                          "; it resumes with the same options (or none), not " +
+                          adaptive_text(*adaptive));
     } else {
       if (std::filesystem::exists(file))
         throw ConfigError(file.string() + " exists: resume it, or map into another directory");
@@ -154,8 +157,9 @@ class Mapper {
     m.stopped_because.clear();
     m.stopped_error = nullptr;
     m.adaptive_ended.clear();
-    const std::size_t total = m.adaptive ? static_cast<std::size_t>(m.adaptive->max_points)
-                                         : static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
+    const std::size_t total =
+        m.adaptive ? static_cast<std::size_t>(m.adaptive->max_points)
+                   : static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
     try {
       toucher_.check_cancelled();
       toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);
@@ -164,7 +168,8 @@ class Mapper {
         if (m.adaptive) return next_adaptive(m, m.adaptive_ended);
         const std::size_t k = m.points.size();
         if (k >= total) return std::nullopt;
-        return analysis::GridCell{static_cast<int>(k) / m.columns + 1, static_cast<int>(k) % m.columns + 1};
+        return analysis::GridCell{static_cast<int>(k) / m.columns + 1,
+                                  static_cast<int>(k) % m.columns + 1};
       };
       for (auto at = next(); at; at = next()) {
         toucher_.check_cancelled();
@@ -175,8 +180,8 @@ class Mapper {
         const json doc = map_to_json(m);
         detail::write_json_atomically(file, doc);
         // go on with the numbers as map.json keeps them (N/mm): a resumed map decides the same
-        format::read_fields(format::JsonSource(doc["points"].back(), file.string()), m.points.back(),
-                            kMapPointFields);
+        format::read_fields(format::JsonSource(doc["points"].back(), file.string()),
+                            m.points.back(), kMapPointFields);
         if (o_.progress) o_.progress(MapProgress{m.resume_index, total, &m.points.back(), "done"});
       }
       m.complete = m.surface.complete = true;
@@ -313,10 +318,11 @@ StiffnessMap map_from_json(const json& j, const std::string& f) {
   std::vector<char> seen(static_cast<std::size_t>(m.rows * m.columns), 0);
   for (std::size_t k = 0; k < m.points.size(); ++k) {
     const MapPoint& p = m.points[k];
-    const std::string where = f + ": points[" + std::to_string(k) + "] (row " + std::to_string(p.row) + ", column " +
-                              std::to_string(p.column) + ")";
+    const std::string where = f + ": points[" + std::to_string(k) + "] (row " +
+                              std::to_string(p.row) + ", column " + std::to_string(p.column) + ")";
     if (p.row < 1 || p.row > m.rows || p.column < 1 || p.column > m.columns)
-      throw ConfigError(where + " is outside the " + std::to_string(m.rows) + " x " + std::to_string(m.columns) + " grid");
+      throw ConfigError(where + " is outside the " + std::to_string(m.rows) + " x " +
+                        std::to_string(m.columns) + " grid");
     if (seen[static_cast<std::size_t>((p.row - 1) * m.columns + p.column - 1)]++)
       throw ConfigError(where + " is there twice");
   }

@@ -170,8 +170,8 @@ void put_grid(hid_t group, const char* name, std::span<const double> values, std
   const hsize_t dims[2] = {rows, columns};
   put_dataset(group, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(), 2, dims, dims, unit, w);
 }
-void put_mask_grid(hid_t group, const char* name, std::span<const std::uint8_t> flags, std::size_t rows,
-                   std::size_t columns, const Where& w_group) {
+void put_mask_grid(hid_t group, const char* name, std::span<const std::uint8_t> flags,
+                   std::size_t rows, std::size_t columns, const Where& w_group) {
   const Where w = w_group.at(name);
   if (flags.size() != rows * columns)
     fail(w, std::to_string(flags.size()) + " flags for a " + std::to_string(rows) + " x " +

@@ -24,16 +24,19 @@ if (!html || !shot || !(measured > 0) || !(cells > measured)) {
   try {
     const page = await browser.newPage();
     await page.goto('file://' + path.resolve(html));
-    await page.waitFor('window.palpFigures > 0 && window.palpRendered === window.palpFigures', 30000);
+    await page.waitFor('window.palpFigures > 0 && window.palpRendered === window.palpFigures',
+                       30000);
     assert.deepStrictEqual(page.errors, [], 'errors while drawing');
     const view = `palpViews['map-stiffness']`;
-    const all = await page.evaluate(`${view}.data('cells').map(d => [d.row, d.column, d.value, d.measured])`);
+    const all = await page.evaluate(
+        `${view}.data('cells').map(d => [d.row, d.column, d.value, d.measured])`);
     assert.strictEqual(all.length, cells, `${all.length} cells`);
     const meas = all.filter(c => c[3] === true), interp = all.filter(c => c[3] === false);
     assert.strictEqual(meas.length, measured, `${meas.length} measured cells`);
     assert.strictEqual(interp.length, cells - measured, `${interp.length} interpolated cells`);
     // the dots: one per measured cell, drawn at those cells
-    const dots = await page.evaluate(`${view}.data('measured_cells').map(d => d.row + ',' + d.column).sort()`);
+    const dots = await page.evaluate(
+        `${view}.data('measured_cells').map(d => d.row + ',' + d.column).sort()`);
     assert.deepStrictEqual(dots, meas.map(c => c[0] + ',' + c[1]).sort());
     const drawn = await page.evaluate(`document.querySelectorAll(
       '#view-map-stiffness svg .mark-symbol.role-mark path').length`);
@@ -42,15 +45,20 @@ if (!html || !shot || !(measured > 0) || !(cells > measured)) {
     const values = meas.map(c => c[2]).filter(v => v !== null);
     const lo = Math.min(...values), hi = Math.max(...values);
     for (const [r, c, v] of interp)
-      assert.ok(v === null || (v >= lo - 1e-9 && v <= hi + 1e-9), `row ${r} column ${c}: ${v} outside ${lo}..${hi}`);
-    const labels = await page.evaluate(`[...document.querySelectorAll('#view-map-stiffness svg text')]
-      .map(t => t.textContent).filter(t => /^\\(\\d/.test(t)).length`);
-    assert.strictEqual(labels, interp.filter(c => c[2] !== null).length, `${labels} labels in parentheses`);
-    const soft = await page.evaluate(`${view}.data('soft_columns_data').map(d => d.index).join(',')`);
+      assert.ok(v === null || (v >= lo - 1e-9 && v <= hi + 1e-9),
+                `row ${r} column ${c}: ${v} outside ${lo}..${hi}`);
+    const labels = await page.evaluate(
+        `[...document.querySelectorAll('#view-map-stiffness svg text')]
+          .map(t => t.textContent).filter(t => /^\\(\\d/.test(t)).length`);
+    assert.strictEqual(labels, interp.filter(c => c[2] !== null).length,
+                       `${labels} labels in parentheses`);
+    const soft = await page.evaluate(
+        `${view}.data('soft_columns_data').map(d => d.index).join(',')`);
     assert.strictEqual(soft, '2,5,8');
     const s = pngStats(await page.screenshot(shot, {fullPage: true}));
     assert.ok(s.distinctColours() > 100, `${s.distinctColours()} colours: a blank page?`);
-    console.log(`ok: ${measured} measured cells dotted, ${interp.length} interpolated, soft columns ${soft}, ` +
+    console.log(`ok: ${measured} measured cells dotted, ${interp.length} interpolated, ` +
+                `soft columns ${soft}, ` +
                 `${s.width}x${s.height} screenshot ${shot}`);
   } finally {
     await browser.close();
