@@ -29,6 +29,10 @@ struct MapCli {
   bool resume = false;
   std::string preset = "2d";
   std::optional<int> repetitions;  // the preset's when not given
+  // adaptive (analysis/adaptive_grid.hpp)
+  bool adaptive = false;
+  int max_points = 0;
+  double threshold = 0.1;
 };
 
 json analysis_json(const palp::MapAnalysis& a) {
@@ -82,6 +86,30 @@ void print_map(const palp::StiffnessMap& m, const palp::MapAnalysis& a) {
               list(a.stiff_columns).c_str(), list(a.stiff_rows).c_str());
 }
 
+/// An adaptive map's economy: points measured of the grid's, and the device time they took
+/// against the whole grid's at the same mean time per point (the result directories' recordings).
+json adaptive_json(const palp::StiffnessMap& m) {
+  const int grid = m.rows * m.columns, used = static_cast<int>(m.points.size());
+  return {{"points_measured", used},
+          {"grid_points", grid},
+          {"max_points", m.adaptive->max_points},
+          {"threshold", m.adaptive->threshold},
+          {"coarse_points", m.adaptive->coarse_points},
+          {"ended", m.adaptive_ended},
+          {"points_saved_percent", 100.0 * (grid - used) / grid}};
+}
+
+void print_adaptive(const palp::StiffnessMap& m) {
+  const json j = adaptive_json(m);
+  std::printf(
+      "adaptive: %d of %d points measured (%.0f %% saved; coarse design %d, threshold %.0f %%, "
+      "budget %d, ended: %s); '-' marks points not measured or without a value\n",
+      j["points_measured"].get<int>(), j["grid_points"].get<int>(),
+      j["points_saved_percent"].get<double>(), m.adaptive->coarse_points,
+      100 * m.adaptive->threshold, m.adaptive->max_points,
+      m.adaptive_ended.empty() ? "not yet" : m.adaptive_ended.c_str());
+}
+
 int map(const Context& ctx, const MapCli& o) {
   const palp::Rig rig = palp::load_rig(o.rig);
   const palp::Plan plan = palp::load_plan(o.plan);
@@ -90,12 +118,18 @@ int map(const Context& ctx, const MapCli& o) {
                                                                         : palp::IndentationPreset::two_d);
   if (o.repetitions) options.settings.repetitions = *o.repetitions;
   options.resume = o.resume;
+  if (o.adaptive) {
+    options.adaptive = palp::analysis::AdaptiveGridOptions{o.max_points, o.threshold, 0};
+    options.adaptive->validate(plan.grid.rows, plan.grid.columns);  // before connecting: exit 2
+  }
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
   catch_interrupts();
   options.cancelled = [] { return interrupted(); };
-  Progress progress("map", static_cast<std::uint64_t>(plan.point_count()), !ctx.json, "points");
+  const int planned = options.adaptive ? options.adaptive->budget(plan.grid.rows, plan.grid.columns)
+                                       : plan.point_count();
+  Progress progress("map", static_cast<std::uint64_t>(planned), !ctx.json, "points");
   options.progress = [&](const palp::MapProgress& p) { progress.update(p.done); };
   const palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, o.out_dir, options);
   progress.finish(m.resume_index);
@@ -104,11 +138,13 @@ int map(const Context& ctx, const MapCli& o) {
             {"columns", m.columns},       {"complete", m.complete},
             {"points_done", m.resume_index}, {"map_dir", o.out_dir}};
   if (!m.complete) j["stopped_because"] = m.stopped_because;
+  if (m.adaptive) j["adaptive"] = adaptive_json(m);
   j["analysis"] = analysis_json(a);
   if (ctx.json)
     print_json(j);
   else {
     print_map(m, a);
+    if (m.adaptive) print_adaptive(m);
     std::printf("results in %s (map.json, points/r<row>_c<column>/)\n", o.out_dir.c_str());
   }
   if (!m.complete) {
@@ -184,11 +220,14 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
   const palp::MapAnalysis a = palp::analyze_map(m, contrast);
   json j = {{"plan", m.plan_name}, {"rows", m.rows}, {"columns", m.columns}, {"complete", m.complete}};
   j["params"] = palp::indentation_params_json(params);
+  if (m.adaptive) j["adaptive"] = adaptive_json(m);
   j["analysis"] = analysis_json(a);
   if (ctx.json)
     print_json(j);
-  else
+  else {
     print_map(m, a);
+    if (m.adaptive) print_adaptive(m);
+  }
   return kOk;
 }
 
@@ -209,6 +248,20 @@ void add_map_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--reps", o->repetitions, "Load/unload cycles at each point (default: the preset's, 3 or 5)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_flag(
+      "--adaptive", o->adaptive,
+      "Measure only some points: a space-filling coarse design (every row and column), then "
+      "refinement where neighbouring k_fd differ by more than --threshold, up to "
+      "--max-points (map.json lists the points measured, in order)");
+  cmd->add_option("--max-points", o->max_points,
+                  "--adaptive: the point budget (0: half the grid, at least the coarse design)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--threshold", o->threshold,
+                  "--adaptive: refine where neighbours differ by more than this fraction "
+                  "(1 - k_min / k_max; 0.1: 10 %, as analyze map's --contrast)")
+      ->check(CLI::Range(0.001, 0.999))
+      ->capture_default_str();
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
 
 }

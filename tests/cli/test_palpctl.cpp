@@ -58,7 +58,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--measure-cycles", "--zero-current", "--zero-pressure", "--ram-only",
       "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
       "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format",
-      "--plot", "--port", "--bind", "--allow-remote", "--verbose"};
+      "--plot", "--port", "--bind", "--allow-remote", "--verbose",
+      "--adaptive", "--max-points", "--threshold"};  // map --adaptive: switch, count, fraction
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},
@@ -84,7 +85,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       {{"fault", "clear"}, {}},
       {{"trace"}, {"--rig", "--plan", "--out-dir", "--resume"}},
       {{"touch-off"}, {"--rig", "--p1-mm", "--p2-mm", "--p3-mm", "--abc-deg", "--contact-E-star-Pa"}},
-      {{"map"}, {"--rig", "--plan", "--out-dir", "--resume", "--preset", "--reps"}},
+      {{"map"}, {"--rig", "--plan", "--out-dir", "--resume", "--preset", "--reps", "--adaptive",
+                 "--max-points", "--threshold"}},
       {{"analyze", "map"}, {"--input", "--contrast"}},
       {{"export"}, {"--format", "--input", "--out", "--overwrite"}},
       {{"analyze"}, {}},

@@ -163,6 +163,17 @@ TEST_F(PalpctlExitMap, MapRefusesAPointDirectoryPalpDidNotWriteNamesItAndKeepsIt
   EXPECT_FALSE(fs::exists(out / "map.json"));
 }
 
+TEST_F(PalpctlExitMap, AnAdaptiveBudgetBelowTheCoarseDesignIsRefusedBeforeAnythingMoves) {
+  std::vector<std::string> args = map_args(dir_ / "m");
+  args.insert(args.end(), {"--adaptive", "--max-points", "2"});
+  const auto r = run(args);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "palpctl: adaptive grid: the coarse design's 3 points exceed the budget of 2 (raise "
+            "max_points)");
+  EXPECT_FALSE(fs::exists(dir_ / "m" / "map.json"));
+}
+
 TEST_F(PalpctlExitMap, AMapKilledMidPointResumesToTheEndWithoutAManualStep) {
   const fs::path out = dir_ / "m";
   std::vector<std::string> args = map_args(out);

@@ -14,7 +14,9 @@
 // points/r<row>_c<column>/, one indentation result directory per point (result.hpp). A map that
 // stopped (Ctrl-C, a crash, an error) resumes with MapOptions::resume from the first point not
 // finished: no point is lost or repeated (a point whose result directory was written but not yet
-// recorded in map.json is indented again and its directory replaced).
+// recorded in map.json is indented again and its directory replaced). An adaptive map
+// (MapOptions::adaptive) measures only some points of the grid, in the planner's order, and
+// map.json lists those (an "adaptive" object holds the planner's options).
 //
 // At each point the probe touches with the coil floating at the ramp's start current (the
 // paper's I_c = 0.5 A, where the coil exerts no force at contact), so the ramp that follows
@@ -31,6 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palp/analysis/adaptive_grid.hpp"
 #include "palp/indent.hpp"
 #include "palp/trace.hpp"
 
@@ -52,13 +55,16 @@ struct StiffnessMap {
   int rows = 0, columns = 0;
   IndentationSettings settings;
   TracedSurface surface;               ///< the touches, as a traced surface (normals once complete)
-  std::vector<MapPoint> points;        ///< row-major
+  std::vector<MapPoint> points;        ///< in measurement order (row-major unless adaptive)
   std::size_t resume_index = 0;
   bool complete = false;
   std::string stopped_because;
   /// The error that stopped the map (null when complete or cancelled), to handle by its kind:
   /// std::rethrow_exception (palpctl exits with that kind's code). Not in map.json.
   std::exception_ptr stopped_error;
+  // adaptive: the planner's options (absent: the regular grid, every point) and why it ended
+  std::optional<analysis::AdaptiveGridOptions> adaptive;
+  std::string adaptive_ended;          ///< "budget" or "converged" once complete
 };
 
 struct MapProgress {
@@ -72,6 +78,10 @@ struct MapOptions {
   std::function<void(const MapProgress&)> progress;
   std::function<bool()> cancelled;
   bool resume = false;                 ///< continue the map in the directory
+  // adaptive: measure only the points the planner chooses (analysis/adaptive_grid.hpp): a coarse
+  // space-filling design, then refinement where neighbours differ, within a budget. A resumed
+  // map continues as map.json says it started (these options, if given, must be the same).
+  std::optional<analysis::AdaptiveGridOptions> adaptive;
 };
 
 /// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and
@@ -97,12 +107,16 @@ StiffnessMap map_from_json(const nlohmann::json& j, const std::string& where);
 struct MapAnalysis {
   int rows = 0, columns = 0;
   std::vector<std::optional<double>> k_N_per_m;  ///< row-major; absent where a point failed
-  std::vector<double> column_mean_N_per_m, row_mean_N_per_m;  ///< over the points present
+  /// Over the points present; on an adaptive map with points not measured the additive fit's
+  /// line means instead (analysis::line_means), which the sampling does not bias.
+  std::vector<double> column_mean_N_per_m, row_mean_N_per_m;
   double median_N_per_m = 0;
   /// Columns / rows whose mean is at least `contrast` below (soft) or above (stiff) the median
   /// of all columns' / rows' means (1-based).
   std::vector<int> soft_columns, stiff_columns, soft_rows, stiff_rows;
   double contrast = 0.1;
+  // adaptive: which points were measured (row-major; absent k where false is "not measured")
+  std::vector<bool> measured;
 };
 
 /// k per point from the map (k_fd, or re-analysed from each point's recording when

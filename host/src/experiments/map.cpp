@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "palp/result.hpp"
 #include "toucher.hpp"
@@ -42,6 +43,13 @@ const Field<StiffnessMap> kMapFields[] = {
     {"stopped_because", &StiffnessMap::stopped_because, 1.0, Need::optional},
 };
 
+// map.json's "adaptive" object (the planner's options, resolved; "ended" read separately)
+const Field<analysis::AdaptiveGridOptions> kAdaptiveFields[] = {
+    {"max_points", &analysis::AdaptiveGridOptions::max_points, 1.0, Need::required},
+    {"threshold", &analysis::AdaptiveGridOptions::threshold, 1.0, Need::required},
+    {"coarse_points", &analysis::AdaptiveGridOptions::coarse_points, 1.0, Need::required},
+};
+
 }  // namespace
 
 json map_to_json(const StiffnessMap& m) {
@@ -56,10 +64,42 @@ json map_to_json(const StiffnessMap& m) {
             {"surface", detail::trace_to_json(m.surface)},
             {"points", pts}};
   format::write_fields(j, m, kMapFields);
+  if (m.adaptive)
+    j["adaptive"] = {{"max_points", m.adaptive->max_points},
+                     {"threshold", m.adaptive->threshold},
+                     {"coarse_points", m.adaptive->coarse_points},
+                     {"ended", m.adaptive_ended}};
   return j;
 }
 
 namespace {
+
+/// The options with their defaults resolved (as map.json keeps them), validated for the grid.
+analysis::AdaptiveGridOptions resolved(const analysis::AdaptiveGridOptions& o, int rows,
+                                       int columns) {
+  o.validate(rows, columns);
+  analysis::AdaptiveGridOptions r = o;
+  r.max_points = o.budget(rows, columns);
+  r.coarse_points = o.coarse_size(rows, columns);
+  return r;
+}
+
+std::string adaptive_text(const analysis::AdaptiveGridOptions& o) {
+  char threshold[32];
+  std::snprintf(threshold, sizeof threshold, "%g", o.threshold);
+  return "max_points " + std::to_string(o.max_points) + ", threshold " + threshold +
+         ", coarse_points " + std::to_string(o.coarse_points);
+}
+
+/// The planner's next point after the map's points (absent: done, with why in `ended`).
+std::optional<analysis::GridCell> next_adaptive(const StiffnessMap& m, std::string& ended) {
+  std::vector<analysis::MeasuredCell> measured;
+  for (const MapPoint& p : m.points) measured.push_back({p.row, p.column, p.k_fd_N_per_m});
+  const analysis::AdaptiveStep s =
+      analysis::next_adaptive_point(m.rows, m.columns, *m.adaptive, measured);
+  if (!s.next) ended = s.phase;
+  return s.next;
+}
 
 class Mapper {
  public:
@@ -81,17 +121,27 @@ class Mapper {
   StiffnessMap run() {
     const std::filesystem::path file = dir_ / "map.json";
     StiffnessMap m;
+    std::optional<analysis::AdaptiveGridOptions> adaptive;
+    if (o_.adaptive) adaptive = resolved(*o_.adaptive, plan_.grid.rows, plan_.grid.columns);
     if (o_.resume) {
       m = load_map(dir_);
       if (m.rows != plan_.grid.rows || m.columns != plan_.grid.columns)
         throw ConfigError((file).string() + ": a " + std::to_string(m.rows) + " x " + std::to_string(m.columns) +
                           " map, the plan is " + std::to_string(plan_.grid.rows) + " x " +
                           std::to_string(plan_.grid.columns));
+      // a resumed map goes on as it started: the same planner options, or the regular grid
+      if (adaptive && !m.adaptive)
+        throw ConfigError(file.string() + ": a regular map; it resumes without adaptive options");
+      if (adaptive && *adaptive != *m.adaptive)
+        throw ConfigError(file.string() + ": an adaptive map with " + adaptive_text(*m.adaptive) +
+                          "; it resumes with the same options (or none), not " +
+                          adaptive_text(*adaptive));
     } else {
       if (std::filesystem::exists(file))
         throw ConfigError(file.string() + " exists: resume it, or map into another directory");
+      m.adaptive = adaptive;
     }
-    check_points_replaceable(m.resume_index);
+    check_points_replaceable(m);
     std::filesystem::create_directories(dir_ / "points");
     m.plan_name = plan_.name;
     m.rows = plan_.grid.rows;
@@ -106,18 +156,32 @@ class Mapper {
     m.complete = false;
     m.stopped_because.clear();
     m.stopped_error = nullptr;
-    const std::size_t total = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
+    m.adaptive_ended.clear();
+    const std::size_t total =
+        m.adaptive ? static_cast<std::size_t>(m.adaptive->max_points)
+                   : static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
     try {
       toucher_.check_cancelled();
       toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);
-      for (std::size_t k = m.resume_index; k < total; ++k) {
+      // the next point: row-major, or the planner's from the points measured (as map.json has them)
+      auto next = [&]() -> std::optional<analysis::GridCell> {
+        if (m.adaptive) return next_adaptive(m, m.adaptive_ended);
+        const std::size_t k = m.points.size();
+        if (k >= total) return std::nullopt;
+        return analysis::GridCell{static_cast<int>(k) / m.columns + 1,
+                                  static_cast<int>(k) % m.columns + 1};
+      };
+      for (auto at = next(); at; at = next()) {
         toucher_.check_cancelled();
-        const int row = static_cast<int>(k) / m.columns + 1, column = static_cast<int>(k) % m.columns + 1;
-        MapPoint p = map_point(row, column);
+        MapPoint p = map_point(at->row, at->column);
         m.points.push_back(p);
         m.surface.points.push_back(p.surface);
-        m.surface.resume_index = m.resume_index = k + 1;
-        detail::write_json_atomically(file, map_to_json(m));
+        m.surface.resume_index = m.resume_index = m.points.size();
+        const json doc = map_to_json(m);
+        detail::write_json_atomically(file, doc);
+        // go on with the numbers as map.json keeps them (N/mm): a resumed map decides the same
+        format::read_fields(format::JsonSource(doc["points"].back(), file.string()),
+                            m.points.back(), kMapPointFields);
         if (o_.progress) o_.progress(MapProgress{m.resume_index, total, &m.points.back(), "done"});
       }
       m.complete = m.surface.complete = true;
@@ -139,11 +203,12 @@ class Mapper {
   /// Before anything moves: every point still to map whose result directory exists must be one
   /// palp wrote (a crash after writing it and before recording it in map.json leaves one, and
   /// it is replaced); anything else there is refused, naming it, and never deleted.
-  void check_points_replaceable(std::size_t from) const {
-    const std::size_t total = static_cast<std::size_t>(plan_.grid.rows) * static_cast<std::size_t>(plan_.grid.columns);
-    for (std::size_t k = from; k < total; ++k)
-      check_replaceable(dir_ / point_dir(static_cast<int>(k) / plan_.grid.columns + 1,
-                                         static_cast<int>(k) % plan_.grid.columns + 1));
+  void check_points_replaceable(const StiffnessMap& m) const {
+    for (int row = 1; row <= plan_.grid.rows; ++row)
+      for (int column = 1; column <= plan_.grid.columns; ++column)
+        if (std::none_of(m.points.begin(), m.points.end(),
+                         [&](const MapPoint& p) { return p.row == row && p.column == column; }))
+          check_replaceable(dir_ / point_dir(row, column));
   }
 
   static std::string point_dir(int row, int column) {
@@ -249,6 +314,31 @@ StiffnessMap map_from_json(const json& j, const std::string& f) {
     throw ConfigError(f + ": " + std::to_string(m.points.size()) + " points, resume_index " +
                       std::to_string(m.resume_index) + " do not fit a " + std::to_string(m.rows) + " x " +
                       std::to_string(m.columns) + " map");
+  // any order (an adaptive map's is the planner's), each point on the grid once
+  std::vector<char> seen(static_cast<std::size_t>(m.rows * m.columns), 0);
+  for (std::size_t k = 0; k < m.points.size(); ++k) {
+    const MapPoint& p = m.points[k];
+    const std::string where = f + ": points[" + std::to_string(k) + "] (row " +
+                              std::to_string(p.row) + ", column " + std::to_string(p.column) + ")";
+    if (p.row < 1 || p.row > m.rows || p.column < 1 || p.column > m.columns)
+      throw ConfigError(where + " is outside the " + std::to_string(m.rows) + " x " +
+                        std::to_string(m.columns) + " grid");
+    if (seen[static_cast<std::size_t>((p.row - 1) * m.columns + p.column - 1)]++)
+      throw ConfigError(where + " is there twice");
+  }
+  if (const auto a = j.find("adaptive"); a != j.end() && !a->is_null()) {
+    if (!a->is_object()) throw ConfigError(f + ": \"adaptive\" must be an object");
+    const format::JsonSource src(*a, f + ": adaptive");
+    analysis::AdaptiveGridOptions o;
+    format::read_fields(src, o, kAdaptiveFields);
+    m.adaptive_ended = a->value("ended", std::string());
+    try {
+      o.validate(m.rows, m.columns);
+    } catch (const ConfigError& e) {
+      throw ConfigError(f + ": adaptive: " + e.what());
+    }
+    m.adaptive = o;
+  }
   for (std::size_t k = 0; k < m.points.size(); ++k) m.points[k].surface = m.surface.points[k];
   return m;
 }
@@ -273,8 +363,22 @@ MapAnalysis analyze_map(const StiffnessMap& m, double contrast) {
     }
     return n > 0 ? s / n : std::nan("");
   };
-  for (int c = 1; c <= m.columns; ++c) a.column_mean_N_per_m.push_back(mean(false, c));
-  for (int r = 1; r <= m.rows; ++r) a.row_mean_N_per_m.push_back(mean(true, r));
+  a.measured.assign(a.k_N_per_m.size(), false);
+  std::vector<analysis::MeasuredCell> cells;
+  for (const MapPoint& p : m.points)
+    if (p.row >= 1 && p.row <= m.rows && p.column >= 1 && p.column <= m.columns) {
+      a.measured[static_cast<std::size_t>((p.row - 1) * m.columns + p.column - 1)] = true;
+      cells.push_back({p.row, p.column, p.k_fd_N_per_m});
+    }
+  if (m.adaptive && std::find(a.measured.begin(), a.measured.end(), false) != a.measured.end()) {
+    // an adaptive map's points not measured: the additive fit's line means, unbiased by which were
+    const analysis::LineMeans lm = analysis::line_means(m.rows, m.columns, cells);
+    a.column_mean_N_per_m = lm.column;
+    a.row_mean_N_per_m = lm.row;
+  } else {
+    for (int c = 1; c <= m.columns; ++c) a.column_mean_N_per_m.push_back(mean(false, c));
+    for (int r = 1; r <= m.rows; ++r) a.row_mean_N_per_m.push_back(mean(true, r));
+  }
   std::vector<double> all;
   for (const auto& k : a.k_N_per_m)
     if (k) all.push_back(*k);

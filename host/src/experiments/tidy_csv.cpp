@@ -198,15 +198,21 @@ std::string map_csv(const fs::path& dir, TidyCsvExport& summary) {
   const StiffnessMap m = load_map(dir);
   Table table(m.settings.analysis);
   const std::size_t total = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
-  for (std::size_t k = 0; k < total; ++k) {  // map.json's points are the grid's first, row-major
+  // the grid row-major, whatever order map.json's points are in (an adaptive map's: the planner's)
+  for (std::size_t k = 0; k < total; ++k) {
     Place where{static_cast<int>(k) / m.columns + 1, static_cast<int>(k) % m.columns + 1, nullptr};
-    if (k >= m.points.size()) {
+    const auto at = std::find_if(m.points.begin(), m.points.end(), [&](const MapPoint& p) {
+      return p.row == where.row && p.column == where.column;
+    });
+    if (at == m.points.end()) {
+      const std::string why = m.adaptive && m.complete
+                                  ? "not measured: the adaptive map did not choose this point"
+                                  : "not mapped: the map stopped before this point";
       table.add(where, std::nullopt, nullptr,
-                "not mapped: the map stopped before this point" +
-                    (m.stopped_because.empty() ? std::string() : " (" + m.stopped_because + ")"));
+                why + (m.stopped_because.empty() ? std::string() : " (" + m.stopped_because + ")"));
       continue;
     }
-    const MapPoint& p = m.points[k];
+    const MapPoint& p = *at;
     where = {p.row, p.column, &p.surface};
     if (!p.indented || p.result_dir.empty()) {
       table.add(where, std::nullopt, nullptr, p.reason.empty() ? "not indented" : p.reason);

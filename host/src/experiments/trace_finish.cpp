@@ -25,7 +25,10 @@ void finish_surface(TracedSurface& s) {
   using analysis::Vec3;
   const std::size_t total = static_cast<std::size_t>(s.rows) * static_cast<std::size_t>(s.columns);
   bool grid = s.rows >= 2 && s.columns >= 2 && s.points.size() == total;
-  for (const TracePoint& p : s.points) grid = grid && p.ok;
+  // the whole grid, row-major (an adaptive map that measured every point has them in its order)
+  for (std::size_t k = 0; grid && k < s.points.size(); ++k)
+    grid = s.points[k].ok && s.points[k].row == static_cast<int>(k) / s.columns + 1 &&
+           s.points[k].column == static_cast<int>(k) % s.columns + 1;
   const Vec3 wo_z = analysis::frame_z_axis(s.work_object);
 
   std::vector<analysis::ApproachAtRest> at(s.points.size());

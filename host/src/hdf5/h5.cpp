@@ -170,6 +170,15 @@ void put_grid(hid_t group, const char* name, std::span<const double> values, std
   const hsize_t dims[2] = {rows, columns};
   put_dataset(group, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(), 2, dims, dims, unit, w);
 }
+void put_mask_grid(hid_t group, const char* name, std::span<const std::uint8_t> flags,
+                   std::size_t rows, std::size_t columns, const Where& w_group) {
+  const Where w = w_group.at(name);
+  if (flags.size() != rows * columns)
+    fail(w, std::to_string(flags.size()) + " flags for a " + std::to_string(rows) + " x " +
+                std::to_string(columns) + " grid");
+  const hsize_t dims[2] = {rows, columns};
+  put_dataset(group, name, H5T_STD_U8LE, H5T_NATIVE_UINT8, flags.data(), 2, dims, dims, "1", w);
+}
 template void put_column<double>(hid_t, const char*, std::span<const double>, std::string_view, const Where&);
 template void put_column<std::uint64_t>(hid_t, const char*, std::span<const std::uint64_t>, std::string_view, const Where&);
 template void put_column<std::uint16_t>(hid_t, const char*, std::span<const std::uint16_t>, std::string_view, const Where&);

@@ -103,6 +103,10 @@ void put_column(hid_t group, const char* name, std::span<const T> values, std::s
 /// shuffled and deflated, with its `unit` attribute.
 void put_grid(hid_t group, const char* name, std::span<const double> values, std::size_t rows,
               std::size_t columns, std::string_view unit, const Where& w);
+/// A 2-D uint8 dataset of `rows` x `columns` row-major 0/1 `flags` (a map's measured mask), as
+/// put_grid, with unit "1".
+void put_mask_grid(hid_t group, const char* name, std::span<const std::uint8_t> flags,
+                   std::size_t rows, std::size_t columns, const Where& w);
 
 // --- reading -----------------------------------------------------------------------------------
 

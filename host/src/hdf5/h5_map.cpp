@@ -44,6 +44,10 @@ void write_map_analysis(hid_t parent, const Where& w, const StiffnessMap& m, con
   }
   put_grid(g.get(), "k_fd_N_per_mm", k, static_cast<std::size_t>(a.rows), static_cast<std::size_t>(a.columns),
            "N/mm", w);
+  // which points were measured: an adaptive map's NaN is "not measured" where this is 0
+  const std::vector<std::uint8_t> measured(a.measured.begin(), a.measured.end());
+  put_mask_grid(g.get(), "measured", measured, static_cast<std::size_t>(a.rows),
+                static_cast<std::size_t>(a.columns), w);
   const auto means = [&](const char* name, const std::vector<double>& v) {
     std::vector<double> out;
     for (double x : v) out.push_back(n_per_mm(x));

@@ -106,6 +106,66 @@ std::string lines_text(const std::vector<int>& v) {
   return s;
 }
 
+/// The points an irregular (adaptive) map did not measure, as cells whose value is interpolated
+/// from the measured points with a value within kInterpolationRadius grid steps (Chebyshev):
+/// inverse-distance weights 1 / d^2, a weighted mean, so never beyond the measured values around
+/// it; none within the radius: no value (grey). Marked "measured": false. Returns how many got a
+/// value.
+constexpr int kInterpolationRadius = 2;
+std::size_t add_interpolated_cells(const StiffnessMap& map, const MapAnalysis& a,
+                                   std::vector<vega::HeatCell>& cells) {
+  std::size_t with_value = 0;
+  for (int r = 1; r <= map.rows; ++r)
+    for (int c = 1; c <= map.columns; ++c) {
+      const std::size_t at = static_cast<std::size_t>((r - 1) * map.columns + (c - 1));
+      if (at >= a.measured.size() || a.measured[at]) continue;
+      double sum = 0, weights = 0;
+      int from = 0;
+      for (int rr = std::max(1, r - kInterpolationRadius);
+           rr <= std::min(map.rows, r + kInterpolationRadius); ++rr)
+        for (int cc = std::max(1, c - kInterpolationRadius);
+             cc <= std::min(map.columns, c + kInterpolationRadius); ++cc) {
+          const auto& k = a.k_N_per_m[static_cast<std::size_t>((rr - 1) * map.columns + (cc - 1))];
+          if (!k) continue;
+          const double w = 1.0 / ((rr - r) * (rr - r) + (cc - c) * (cc - c));
+          sum += w * *k * 1e-3;
+          weights += w;
+          ++from;
+        }
+      vega::HeatCell cell;
+      cell.row = r;
+      cell.column = c;
+      cell.value = from > 0 ? rounded(sum / weights, 4) : NAN;
+      with_value += from > 0 ? 1 : 0;
+      const std::string radius = std::to_string(kInterpolationRadius) + " grid steps";
+      cell.extra = {
+          {"delta0", nullptr},
+          {"kt", nullptr},
+          {"reason", from > 0 ? "not measured: interpolated from the " + std::to_string(from) +
+                                    " measured points within " + radius + " (inverse-distance)"
+                              : "not measured; no measured point within " + radius},
+          {"measured", false}};
+      cells.push_back(std::move(cell));
+    }
+  return with_value;
+}
+
+/// What an irregular (adaptive) map measured, for the section's text ("" for a whole grid).
+std::string adaptive_text(const StiffnessMap& map, std::size_t interpolated) {
+  const std::size_t grid = static_cast<std::size_t>(map.rows * map.columns);
+  if (map.points.size() >= grid) return "";
+  std::string s = " (" + std::to_string(map.points.size()) + " of the " + std::to_string(grid) +
+                  " points measured";
+  if (map.adaptive)
+    s += " by the adaptive map: a coarse design of " + std::to_string(map.adaptive->coarse_points) +
+         " points, then refinement where neighbours differ by more than " +
+         num(map.adaptive->threshold * 100) + " %, budget " +
+         std::to_string(map.adaptive->max_points);
+  return s + "; a dot marks each measured cell, the " + std::to_string(interpolated) +
+         " pale cells with values in parentheses are interpolated between them and take no part in "
+         "the means)";
+}
+
 }  // namespace
 
 Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const fs::path& dir) {
@@ -137,9 +197,11 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
     c.value = std::isnan(k) ? NAN : rounded(k, 4);
     c.extra = {{"delta0", value_or(p.delta0_m, 1e3, pr.delta0_mm)},
                {"kt", value_or(p.k_tangent_N_per_m, 1e-3, pr.k_tangent_N_per_mm)},
-               {"reason", reason.empty() ? "–" : reason}};
+               {"reason", reason.empty() ? "–" : reason},
+               {"measured", true}};
     cells.push_back(std::move(c));
   }
+  const std::size_t interpolated = add_interpolated_cells(map, analysis, cells);
   const int sel_row = first_with_curves ? first_with_curves->row : 1;
   const int sel_column = first_with_curves ? first_with_curves->column : 1;
   const double lo_mm = map.settings.analysis.window_lo_m * 1e3, hi_mm = map.settings.analysis.window_hi_m * 1e3;
@@ -175,6 +237,38 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
          "'δ0 (mm)': isValid(datum.delta0) ? format(datum.delta0, '.3f') : '–', "
          "'k_tangent (N/mm)': isValid(datum.kt) ? format(datum.kt, '.3f') : '–', "
          "'reason': datum.reason}"}};
+    m["encode"]["enter"]["fillOpacity"] = {
+        {"signal", "datum.measured === false ? 0.45 : 1"}};  // interpolated: pale
+  }
+  for (json& m : spec["marks"])
+    if (m.value("name", "") == "cell_labels") {
+      m["encode"]["enter"]["text"] = {
+          {"signal",
+           "!isValid(datum.value) ? '–' : datum.measured === false ? '(' + "
+           "format(datum.value, '.2f') + ')' : format(datum.value, '.2f')"}};
+      m["encode"]["enter"]["fill"] = {
+          {"signal",
+           "datum.measured === false ? '#333333' : datum.shade < 0.55 ? 'white' : 'black'"}};
+    }
+  if (map.points.size() < static_cast<std::size_t>(map.rows * map.columns)) {
+    // a dot in the corner of every measured cell
+    spec["data"].push_back(
+        {{"name", "measured_cells"},
+         {"source", "cells"},
+         {"transform", json::array({{{"type", "filter"}, {"expr", "datum.measured === true"}}})}});
+    vega::add_mark(spec, {{"type", "symbol"},
+                          {"name", "measured_marks"},
+                          {"from", {{"data", "measured_cells"}}},
+                          {"interactive", false},
+                          {"encode",
+                           {{"enter",
+                             {{"x", {{"scale", "x"}, {"field", "column"}, {"band", 0.84}}},
+                              {"y", {{"scale", "y"}, {"field", "row"}, {"band", 0.16}}},
+                              {"shape", {{"value", "circle"}}},
+                              {"size", {{"value", 24}}},
+                              {"fill", {{"value", "#000000"}}},
+                              {"stroke", {{"value", "#ffffff"}}},
+                              {"strokeWidth", {{"value", 1}}}}}}}});
   }
   spec["signals"] = json::array({{{"name", "selected"},
                                   {"value", {{"row", sel_row}, {"column", sel_column}}},
@@ -271,24 +365,33 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
   s.title = "Stiffness map";
   std::size_t present = 0;
   for (const auto& k : analysis.k_N_per_m) present += k ? 1 : 0;
-  s.text = "k_fd = (F_o(" + num(hi_mm) + " mm) − F_o(" + num(lo_mm) + " mm)) / " + num(hi_mm - lo_mm) +
-           " mm at each point of the " + std::to_string(map.rows) + " × " + std::to_string(map.columns) +
-           " grid (the paper's Fig. 6b), " + std::to_string(present) + " of " +
-           std::to_string(analysis.k_N_per_m.size()) + " points with a value; median " +
-           num(analysis.median_N_per_m * 1e-3) + " N/mm. A column or row is soft (stiff) when its mean is at least " +
-           num(analysis.contrast * 100) + " % below (above) the median of the columns' (rows') means. Soft columns: " +
-           lines_text(analysis.soft_columns) + "; stiff columns: " + lines_text(analysis.stiff_columns) +
-           "; soft rows: " + lines_text(analysis.soft_rows) + "; stiff rows: " + lines_text(analysis.stiff_rows) + ".";
+  s.text = "k_fd = (F_o(" + num(hi_mm) + " mm) − F_o(" + num(lo_mm) + " mm)) / " +
+           num(hi_mm - lo_mm) + " mm at each point of the " + std::to_string(map.rows) + " × " +
+           std::to_string(map.columns) + " grid (the paper's Fig. 6b), " + std::to_string(present) +
+           " of " + std::to_string(analysis.k_N_per_m.size()) + " points with a value" +
+           adaptive_text(map, interpolated) + "; median " + num(analysis.median_N_per_m * 1e-3) +
+           " N/mm. A column or row is soft (stiff) when its mean is at least " +
+           num(analysis.contrast * 100) +
+           " % below (above) the median of the columns' (rows') means. Soft columns: " +
+           lines_text(analysis.soft_columns) +
+           "; stiff columns: " + lines_text(analysis.stiff_columns) +
+           "; soft rows: " + lines_text(analysis.soft_rows) +
+           "; stiff rows: " + lines_text(analysis.stiff_rows) + ".";
 
   Figure f;
   f.id = "map-stiffness";
   f.title = "k_fd heat map and one point's force–depth curves";
-  f.caption = "Left: k_fd per grid point (N/mm; grey: no value), rows down and columns across; soft lines outlined "
-              "in vermilion, stiff ones in black; the black square is the point drawn on the right. In the page, "
-              "hover a cell for its k_fd, δ0, tangent stiffness and any reason, and click it to draw its curves. "
-              "Right: F_o against δ = z − z_c of every repetition (" +
-              std::to_string(kBlocksPerRepetition) + " block means each), the k_fd window " + num(lo_mm) + "–" +
-              num(hi_mm) + " mm shaded.";
+  f.caption =
+      "Left: k_fd per grid point (N/mm; grey: no value), rows down and columns across; on a map "
+      "that measured only some points a dot marks each measured one, and the pale cells with "
+      "values in parentheses are interpolated from the measured points within " +
+      std::to_string(kInterpolationRadius) +
+      " grid steps (inverse-distance weights); soft lines outlined in vermilion, stiff ones in "
+      "black; the black square is the point drawn on the right. In the page, hover a cell for its "
+      "k_fd, δ0, tangent stiffness and any reason, and click it to draw its curves. Right: F_o "
+      "against δ = z − z_c of every repetition (" +
+      std::to_string(kBlocksPerRepetition) + " block means each), the k_fd window " + num(lo_mm) +
+      "–" + num(hi_mm) + " mm shaded.";
   f.spec = std::move(spec);
   s.figures.push_back(std::move(f));
 
@@ -313,8 +416,14 @@ Section map_section(const StiffnessMap& map, const MapAnalysis& analysis, const 
   };
   add_lines("column", analysis.column_mean_N_per_m, analysis.soft_columns, analysis.stiff_columns);
   add_lines("row", analysis.row_mean_N_per_m, analysis.soft_rows, analysis.stiff_rows);
-  t.caption = "Means over the points with a value; a line is marked when it is at least " +
-              num(analysis.contrast * 100) + " % below (soft) or above (stiff) the median of its kind's means.";
+  const std::vector<bool>& seen = analysis.measured;
+  const bool fitted = map.adaptive && std::find(seen.begin(), seen.end(), false) != seen.end();
+  t.caption = std::string(fitted ? "Means over the measured points with a value (points not "
+                                   "measured: each line's mean from an additive row + column fit, "
+                                   "which the sampling does not bias)"
+                                 : "Means over the points with a value") +
+              "; a line is marked when it is at least " + num(analysis.contrast * 100) +
+              " % below (soft) or above (stiff) the median of its kind's means.";
   s.tables.push_back(std::move(t));
   return s;
 }

@@ -102,6 +102,8 @@ TEST_F(Hdf5, MapFileHoldsTheKnownAnalysisGridAndLines) {
   EXPECT_EQ(k[2], 0.25);
   EXPECT_TRUE(std::isnan(k[3]));
   EXPECT_EQ(doubles(f, "/map/analysis/row_mean_N_per_mm"), (std::vector<double>{0.5, 0.25}));
+  // points 1..3 measured (r1_c2 without a stiffness), r2_c2 never: the mask tells the NaNs apart
+  EXPECT_EQ(doubles(f, "/map/analysis/measured"), (std::vector<double>{1, 1, 1, 0}));
   EXPECT_EQ(attr(f, "/map/analysis", "median_N_per_mm"), 0.5);
   EXPECT_EQ(attr(f, "/map/points/r1_c1", "k_fd_N_per_mm"), 0.5);
   EXPECT_EQ(attr(f, "/map/points/r1_c2", "indented"), 0.0);

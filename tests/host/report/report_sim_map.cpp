@@ -4,9 +4,12 @@
 // (all nine columns, so the soft channels under columns 2, 5 and 8 are crossed), one repetition
 // of a ramp to 1.5 A a point; then the map's report as OUT_DIR/map-report.html. Nothing here is
 // synthetic: the stiffness the page must show comes from the plant's pad and the real firmware
-// core. OUT_DIR is replaced.
+// core. OUT_DIR is replaced. With --adaptive the same rows are mapped adaptively (14 of the 27
+// points: the coarse design's 9, one per column, then refinement; palp/analysis/adaptive_grid.hpp)
+// for the report's irregular heat map.
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "palp/map.hpp"
 #include "palp/probe.hpp"
@@ -16,8 +19,9 @@
 #include "trace_sim.hpp"
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: palp-report-sim-map OUT_DIR\n";
+  const bool adaptive = argc == 3 && std::string(argv[2]) == "--adaptive";
+  if (argc != 2 && !adaptive) {
+    std::cerr << "usage: palp-report-sim-map OUT_DIR [--adaptive]\n";
     return 2;
   }
   namespace fs = std::filesystem;
@@ -35,6 +39,7 @@ int main(int argc, char** argv) {
     palp::MapOptions o;
     o.settings.repetitions = 1;
     o.settings.stop_A = 1.5;
+    if (adaptive) o.adaptive = palp::analysis::AdaptiveGridOptions{.max_points = 14};
     const palp::StiffnessMap m = palp::map_plan(probe, *robot, rig, plan, out / "map", o);
     if (!m.complete) {
       std::cerr << "palp-report-sim-map: the map stopped: " << m.stopped_because << "\n";
