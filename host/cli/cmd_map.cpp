@@ -33,6 +33,7 @@ struct MapCli {
   bool adaptive = false;
   int max_points = 0;
   double threshold = 0.1;
+  std::optional<double> max_force_N;  // depth sensitivity: the ramp's top object force
 };
 
 json analysis_json(const palp::MapAnalysis& a) {
@@ -122,6 +123,7 @@ int map(const Context& ctx, const MapCli& o) {
     options.adaptive = palp::analysis::AdaptiveGridOptions{o.max_points, o.threshold, 0};
     options.adaptive->validate(plan.grid.rows, plan.grid.columns);  // before connecting: exit 2
   }
+  options.max_force_N = o.max_force_N;
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
@@ -262,6 +264,10 @@ void add_map_command(CLI::App& app, Context& ctx) {
                   "(1 - k_min / k_max; 0.1: 10 %, as analyze map's --contrast)")
       ->check(CLI::Range(0.001, 0.999))
       ->capture_default_str();
+  cmd->add_option("--max-force-N", o->max_force_N,
+                  "Stop each ramp at this object force, N (its top current from K_f, I_c, k_v and "
+                  "the depth the previous point reached); refused beyond the coil's current clamp "
+                  "or I2t margin (docs/depth-sensitivity.md)");
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
 
 }

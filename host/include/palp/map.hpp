@@ -59,6 +59,7 @@ struct StiffnessMap {
   std::size_t resume_index = 0;
   bool complete = false;
   std::string stopped_because;
+  std::optional<double> max_force_N;   ///< MapOptions::max_force_N the map ran with (map.json)
   /// The error that stopped the map (null when complete or cancelled), to handle by its kind:
   /// std::rethrow_exception (palpctl exits with that kind's code). Not in map.json.
   std::exception_ptr stopped_error;
@@ -82,6 +83,10 @@ struct MapOptions {
   // space-filling design, then refinement where neighbours differ, within a budget. A resumed
   // map continues as map.json says it started (these options, if given, must be the same).
   std::optional<analysis::AdaptiveGridOptions> adaptive;
+  // depth sensitivity (docs/depth-sensitivity.md): the ramp stops at this object force, N; each
+  // point's top current from the depth the previous point reached (force_limit.hpp); refused
+  // (ConfigError) beyond the device's current clamp or I2t margin. Absent: settings.stop_A.
+  std::optional<double> max_force_N;
 };
 
 /// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "palp/force_limit.hpp"
 #include "palp/result.hpp"
 #include "toucher.hpp"
 #include "format/field_table.hpp"
@@ -41,6 +42,7 @@ const Field<StiffnessMap> kMapFields[] = {
     {"complete", &StiffnessMap::complete, 1.0, Need::optional},
     {"resume_index", &StiffnessMap::resume_index, 1.0, Need::optional},
     {"stopped_because", &StiffnessMap::stopped_because, 1.0, Need::optional},
+    {"max_force_N", &StiffnessMap::max_force_N, 1.0, Need::optional},
 };
 
 // map.json's "adaptive" object (the planner's options, resolved; "ended" read separately)
@@ -115,6 +117,7 @@ class Mapper {
       throw ConfigError("the plan is in work object '" + plan.work_object + "' but the rig's is '" +
                         rig.work_object->name + "'");
     o.settings.validate();
+    if (o.max_force_N) check_max_force(o.settings, *o.max_force_N, CoilLimits::of(probe.params()));
     toucher_.set_work_object(rig.work_object->pose);
   }
 
@@ -147,6 +150,7 @@ class Mapper {
     m.rows = plan_.grid.rows;
     m.columns = plan_.grid.columns;
     m.settings = o_.settings;
+    m.max_force_N = o_.max_force_N;
     m.surface.plan_name = plan_.name;
     m.surface.rows = m.rows;
     m.surface.columns = m.columns;
@@ -245,8 +249,9 @@ class Mapper {
     const double floating = toucher_.floating_stroke_m();
     toucher_.release_coil();
     toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
-    IndentationRun run = indent(probe_, o_.settings, {}, o_.cancelled);
+    IndentationRun run = indent(probe_, point_settings(), {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
+    if (const auto top = ramp_top_of(run)) reached_depth_m_ = top->depth_m;
     p.result_dir = point_dir(row, column);
     write_result(dir_ / p.result_dir, run, Overwrite::yes);
     p.indented = true;
@@ -265,6 +270,14 @@ class Mapper {
     return p;
   }
 
+  /// The ramp for the next point: the settings', or with max_force_N its top for that force at
+  /// the depth the previous point reached (0 for the first: F_o stops k_v delta short of F).
+  IndentationSettings point_settings() const {
+    if (!o_.max_force_N) return o_.settings;
+    return settings_for_max_force(o_.settings, *o_.max_force_N, reached_depth_m_);
+  }
+
+  double reached_depth_m_ = 0;
   Probe& probe_;
   Robot& robot_;
   Rig rig_;
