@@ -45,7 +45,8 @@ struct CoilLimits {
 inline constexpr double kI2tWarningFraction = 0.8;
 
 /// i_top = I_c + (F + k_v depth) / K_f, with the analysis' constants.
-double top_current_for_force_A(const analysis::IndentationParams& a, double force_N, double depth_m);
+double top_current_for_force_A(const analysis::IndentationParams& a, double force_N,
+                               double depth_m);
 
 /// Peak of the firmware's I2t model, A^2 s, over the settings' ramp (all repetitions) repeated
 /// back to back with settle_s at start_A between, from a cold coil to its periodic state.

@@ -14,7 +14,7 @@ namespace palp {
 
 namespace {
 
-std::string num(double v, const char* fmt = "%.4g") {
+std::string limit_num(double v, const char* fmt = "%.4g") {
   char b[32];
   std::snprintf(b, sizeof b, fmt, v);
   return b;
@@ -22,7 +22,7 @@ std::string num(double v, const char* fmt = "%.4g") {
 
 // the staircase's currents in order, one per dwell (the firmware's RampProgram: the top level
 // held once, the start level at both ends of a repetition)
-std::vector<double> staircase_levels_A(const IndentationSettings& s) {
+std::vector<double> force_limit_levels_A(const IndentationSettings& s) {
   const auto n = static_cast<int>(std::floor((s.stop_A - s.start_A) / s.step_A + 1e-3));
   std::vector<double> out;
   for (int k = 0; k <= n; ++k) out.push_back(s.start_A + s.step_A * k);
@@ -37,7 +37,8 @@ CoilLimits CoilLimits::of(const Params& p) {
   return CoilLimits{p.current_clamp_A, p.i2t_continuous_A, p.i2t_limit_A2s, p.i2t_tau_s};
 }
 
-double top_current_for_force_A(const analysis::IndentationParams& a, double force_N, double depth_m) {
+double top_current_for_force_A(const analysis::IndentationParams& a, double force_N,
+                               double depth_m) {
   return a.contact_current_A + (force_N + a.spring_N_per_m * depth_m) / a.force_constant_N_per_A;
 }
 
@@ -51,7 +52,7 @@ double ramp_i2t_peak_A2s(const IndentationSettings& s, const CoilLimits& lim) {
     e = std::max(0.0, steady + (e - steady) * std::exp(-t_s / tau));
     peak = std::max(peak, e);
   };
-  const std::vector<double> levels = staircase_levels_A(s);
+  const std::vector<double> levels = force_limit_levels_A(s);
   for (int point = 0; point < 10000; ++point) {  // to the periodic state of a map's points
     const double at_start = e;
     for (int r = 0; r < s.repetitions; ++r)
@@ -63,33 +64,34 @@ double ramp_i2t_peak_A2s(const IndentationSettings& s, const CoilLimits& lim) {
 }
 
 void check_max_force(const IndentationSettings& s, double max_force_N, const CoilLimits& lim) {
+  auto n = [](double v, const char* fmt = "%.4g") { return limit_num(v, fmt); };
   if (!std::isfinite(max_force_N) || max_force_N <= 0)
-    throw ConfigError("max_force_N must be a positive force, not " + num(max_force_N) + " N");
+    throw ConfigError("max_force_N must be a positive force, not " + n(max_force_N) + " N");
   if (!(s.displacement_limit_m > 0))
-    throw ConfigError("max_force_N needs the ramp's displacement limit (displacement_limit_m is 0): "
-                      "it bounds the depth, and so the top current, a force needs");
+    throw ConfigError("max_force_N needs the ramp's displacement limit (displacement_limit_m is "
+                      "0): it bounds the depth, and so the top current, a force needs");
   const auto& a = s.analysis;
+  const double kf = a.force_constant_N_per_A, ic = a.contact_current_A, kv = a.spring_N_per_m;
   const double depth = s.displacement_limit_m;
   const double top = top_current_for_force_A(a, max_force_N, depth);
-  const std::string how = "(I_c " + num(a.contact_current_A) + " A + (" + num(max_force_N) +
-                          " N + k_v " + num(a.spring_N_per_m) + " N/m x " + num(depth * 1e3) +
-                          " mm displacement limit) / K_f " + num(a.force_constant_N_per_A) + " N/A)";
+  const std::string asked = "max_force_N " + n(max_force_N) + " N";
+  const std::string how = "(I_c " + n(ic) + " A + (" + n(max_force_N) + " N + k_v " + n(kv) +
+                          " N/m x " + n(depth * 1e3) + " mm displacement limit) / K_f " + n(kf) +
+                          " N/A)";
   if (top > lim.current_clamp_A) {
-    const double most = a.force_constant_N_per_A * (lim.current_clamp_A - a.contact_current_A) -
-                        a.spring_N_per_m * depth;
-    throw ConfigError("max_force_N " + num(max_force_N) + " N needs up to " + num(top, "%.3f") +
-                      " A at the ramp's top " + how + ", above the coil's current clamp " +
-                      num(lim.current_clamp_A) + " A: at most " + num(most, "%.2f") + " N");
+    const double most = std::floor(100 * (kf * (lim.current_clamp_A - ic) - kv * depth)) / 100;
+    throw ConfigError(asked + " needs up to " + n(top, "%.3f") + " A at the ramp's top " + how +
+                      ", above the coil's current clamp " + n(lim.current_clamp_A) +
+                      " A: at most " + n(most, "%.2f") + " N");
   }
-  IndentationSettings worst = settings_for_max_force(s, max_force_N, depth);
-  const double peak = ramp_i2t_peak_A2s(worst, lim);
+  const double peak = ramp_i2t_peak_A2s(settings_for_max_force(s, max_force_N, depth), lim);
   if (peak > kI2tWarningFraction * lim.i2t_limit_A2s)
-    throw ConfigError("max_force_N " + num(max_force_N) + " N: the ramp to " + num(top, "%.3f") +
-                      " A " + how + ", " + std::to_string(s.repetitions) + " repetitions of " +
-                      num(s.dwell_s * 1e3) + " ms steps, heats the coil's I2t model to " +
-                      num(peak, "%.1f") + " A^2 s, above " + num(100 * kI2tWarningFraction) +
-                      " % of its " + num(lim.i2t_limit_A2s) + " A^2 s trip level (continuous " +
-                      num(lim.i2t_continuous_A) + " A, tau " + num(lim.i2t_tau_s) +
+    throw ConfigError(asked + ": the ramp to " + n(top, "%.3f") + " A " + how + ", " +
+                      std::to_string(s.repetitions) + " repetitions of " + n(s.dwell_s * 1e3) +
+                      " ms steps, heats the coil's I2t model to " + n(peak, "%.1f") +
+                      " A^2 s, above " + n(100 * kI2tWarningFraction) + " % of its " +
+                      n(lim.i2t_limit_A2s) + " A^2 s trip level (continuous " +
+                      n(lim.i2t_continuous_A) + " A, tau " + n(lim.i2t_tau_s) +
                       " s): ask for less force, fewer repetitions or shorter steps");
 }
 
@@ -126,7 +128,8 @@ std::optional<RampTop> ramp_top_of(const IndentationRun& run) {
   for (Eigen::Index k = 0; k < end; ++k) {
     if (std::abs(level(k) - top) > 1e-7) continue;
     const double depth = c.z_m[k] - run.float_z_m;
-    t.force_N += a.force_constant_N_per_A * (c.i_A[k] - a.contact_current_A) - a.spring_N_per_m * depth;
+    t.force_N +=
+        a.force_constant_N_per_A * (c.i_A[k] - a.contact_current_A) - a.spring_N_per_m * depth;
     t.depth_m += depth;
     ++m;
   }

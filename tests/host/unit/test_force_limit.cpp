@@ -43,14 +43,15 @@ TEST(ForceLimit, StaircaseLandsOnTheTopWithAStepNoLargerThanAsked) {
               0.5 + (5.0 + 43.9 * 5e-3) / 2.918, 1e-12);
 }
 
-// firmware/core/README.md: a 3 A hold trips the default model (2 A, 60 A^2 s, 120 s) at 12.643 s
+// firmware/core/README.md: a 3 A hold trips the default model (2 A, 60 A^2 s, 120 s) at 12.643 s.
+// A two-level "ramp" 0 A -> 3 A, a minute at 0 A between repetitions (the model cools to 0).
 TEST(ForceLimit, I2tPeakOfAThreeAmpHoldReachesTheTripLevelAtTheFirmwaresTime) {
   IndentationSettings hold;
-  hold.start_A = hold.stop_A = 3.0;
-  hold.step_A = 1.0;
+  hold.start_A = 0.0;
+  hold.stop_A = hold.step_A = 3.0;
   hold.unload = false;
   hold.repetitions = 1;
-  hold.settle_s = 0;
+  hold.settle_s = 60;
   hold.dwell_s = -120 * std::log(1 - 60.0 / (120 * (9 - 4)));
   EXPECT_NEAR(hold.dwell_s, 12.643, 1e-3);
   EXPECT_NEAR(palp::ramp_i2t_peak_A2s(hold, CoilLimits{}), 60.0, 1e-9);
@@ -61,10 +62,10 @@ TEST(ForceLimit, ANineNewtonAskIsRefusedNamingTheClampAndTheLargestForce) {
   EXPECT_EQ(refusal(s, 9.0),
             "max_force_N 9 N needs up to 3.660 A at the ramp's top (I_c 0.5 A + (9 N + k_v 43.9 "
             "N/m x 5 mm displacement limit) / K_f 2.918 N/A), above the coil's current clamp 3.2 "
-            "A: at most 7.66 N");
-  EXPECT_EQ(refusal(s, 7.66), "accepted");
-  EXPECT_EQ(refusal(s, 7.66, CoilLimits{.current_clamp_A = 3.0}).substr(0, 47),
-            "max_force_N 7.66 N needs up to 3.200 A at the r");
+            "A: at most 7.65 N");  // 7.659 N, rounded down
+  EXPECT_EQ(refusal(s, 7.65), "accepted");
+  EXPECT_EQ(refusal(s, 7.65, CoilLimits{.current_clamp_A = 3.0}).substr(0, 47),
+            "max_force_N 7.65 N needs up to 3.197 A at the r");
 }
 
 TEST(ForceLimit, ALongOneDRampAtTheClampIsRefusedByTheI2tModel) {
