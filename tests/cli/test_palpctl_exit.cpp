@@ -174,6 +174,21 @@ TEST_F(PalpctlExitMap, AnAdaptiveBudgetBelowTheCoarseDesignIsRefusedBeforeAnythi
   EXPECT_FALSE(fs::exists(dir_ / "m" / "map.json"));
 }
 
+// depth sensitivity (docs/depth-sensitivity.md): a force beyond palp-sim's 3.2 A current clamp
+TEST_F(PalpctlExitMap, MapMaxForceBeyondTheCurrentClampExits2NamingTheNumbersBeforeMoving) {
+  const fs::path out = dir_ / "m";
+  std::vector<std::string> args = map_args(out);
+  args.insert(args.end(), {"--max-force-N", "9"});
+  const auto r = run(args);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("max_force_N 9 N needs up to 3.660 A at the ramp's top (I_c 0.5 A + (9 N + "
+                       "k_v 43.9 N/m x 5 mm displacement limit) / K_f 2.918 N/A), above the "
+                       "coil's current clamp 3.2 A: at most 7.65 N"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out / "map.json"));
+}
+
 TEST_F(PalpctlExitMap, AMapKilledMidPointResumesToTheEndWithoutAManualStep) {
   const fs::path out = dir_ / "m";
   std::vector<std::string> args = map_args(out);

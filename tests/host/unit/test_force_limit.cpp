@@ -9,7 +9,7 @@
 #include "palp/error.hpp"
 #include "palp/force_limit.hpp"
 
-namespace {
+namespace force_limit_test {
 
 using palp::CoilLimits;
 using palp::IndentationPreset;
@@ -89,4 +89,4 @@ TEST(ForceLimit, NonPositiveForcesAndRampsWithoutADisplacementLimitAreRefused) {
             "bounds the depth, and so the top current, a force needs");
 }
 
-}  // namespace
+}  // namespace force_limit_test
