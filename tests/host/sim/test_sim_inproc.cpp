@@ -11,6 +11,7 @@
 
 #include "palp/probe.hpp"
 #include "palp/protocol/frame.hpp"
+#include "palp/protocol/schema.hpp"  // kSchemaHash (include what is used: unity batches move)
 #include "palp/protocol/stream.hpp"
 #include "palp/sim_inproc.hpp"
 #include "sanitized.hpp"
