@@ -35,6 +35,7 @@
 
 #include "palp/analysis/adaptive_grid.hpp"
 #include "palp/indent.hpp"
+#include "palp/map_dynamic.hpp"
 #include "palp/trace.hpp"
 
 namespace palp {
@@ -48,6 +49,9 @@ struct MapPoint {
   std::string k_fd_reason;
   std::optional<double> delta0_m, k_tangent_N_per_m;
   std::string result_dir;              ///< relative to the map's directory ("points/r1_c1")
+  // dynamic (map_dynamic.hpp): the identification after the ramp, when the map is dynamic
+  std::string dynamic_dir;             ///< "points/r1_c1_dynamic"; empty when not identified
+  DynamicPoint dynamic;
 };
 
 struct StiffnessMap {
@@ -56,6 +60,8 @@ struct StiffnessMap {
   IndentationSettings settings;
   TracedSurface surface;               ///< the touches, as a traced surface (normals once complete)
   std::vector<MapPoint> points;        ///< in measurement order (row-major unless adaptive)
+  // dynamic (map_dynamic.hpp): the identification settings of a dynamic map, none otherwise
+  std::optional<IdentificationSettings> dynamic;
   std::size_t resume_index = 0;
   bool complete = false;
   std::string stopped_because;
@@ -87,6 +93,8 @@ struct MapOptions {
   // point's top current from the depth the previous point reached (force_limit.hpp); refused
   // (ConfigError) beyond the device's current clamp or I2t margin. Absent: settings.stop_A.
   std::optional<double> max_force_N;
+  // dynamic (map_dynamic.hpp): identify the contact at every point after the ramp
+  MapDynamicOptions dynamic;
 };
 
 /// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and

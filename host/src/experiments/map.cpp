@@ -10,6 +10,7 @@
 #include "palp/result.hpp"
 #include "toucher.hpp"
 #include "format/field_table.hpp"
+#include "map_dynamic_step.hpp"
 #include "trace_json.hpp"
 
 namespace palp {
@@ -59,6 +60,7 @@ json map_to_json(const StiffnessMap& m) {
   for (const MapPoint& p : m.points) {
     json q;
     format::write_fields(q, p, kMapPointFields);
+    write_dynamic_point(q, p);
     pts.push_back(std::move(q));
   }
   json j = {{"format", "palp.map/1"},
@@ -71,6 +73,7 @@ json map_to_json(const StiffnessMap& m) {
                      {"threshold", m.adaptive->threshold},
                      {"coarse_points", m.adaptive->coarse_points},
                      {"ended", m.adaptive_ended}};
+  if (m.dynamic) j["dynamic"] = identification_settings_json(*m.dynamic);
   return j;
 }
 
@@ -108,7 +111,10 @@ class Mapper {
   Mapper(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const std::filesystem::path& dir,
          const MapOptions& o)
       : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
-        toucher_(probe, robot, rig_, o.cancelled) {
+        toucher_(probe, robot, rig_, o.cancelled),
+        dynamic_(o.dynamic.enabled ? std::optional<IdentificationSettings>(
+                                         o.dynamic.settings.value_or(map_dynamic_settings(o.settings)))
+                                   : std::nullopt) {
     rig.validate();
     plan.validate();
     if (!rig.work_object)
@@ -118,6 +124,7 @@ class Mapper {
                         rig.work_object->name + "'");
     o.settings.validate();
     if (o.max_force_N) check_max_force(o.settings, *o.max_force_N, CoilLimits::of(probe.params()));
+    if (dynamic_) detail::check_dynamic_settings(*dynamic_, o.settings);
     toucher_.set_work_object(rig.work_object->pose);
   }
 
@@ -151,6 +158,7 @@ class Mapper {
     m.columns = plan_.grid.columns;
     m.settings = o_.settings;
     m.max_force_N = o_.max_force_N;
+    m.dynamic = dynamic_;
     m.surface.plan_name = plan_.name;
     m.surface.rows = m.rows;
     m.surface.columns = m.columns;
@@ -211,8 +219,10 @@ class Mapper {
     for (int row = 1; row <= plan_.grid.rows; ++row)
       for (int column = 1; column <= plan_.grid.columns; ++column)
         if (std::none_of(m.points.begin(), m.points.end(),
-                         [&](const MapPoint& p) { return p.row == row && p.column == column; }))
+                         [&](const MapPoint& p) { return p.row == row && p.column == column; })) {
           check_replaceable(dir_ / point_dir(row, column));
+          if (dynamic_) check_replaceable(dir_ / detail::dynamic_dir_of(point_dir(row, column)));
+        }
   }
 
   static std::string point_dir(int row, int column) {
@@ -264,6 +274,10 @@ class Mapper {
     } else {
       p.k_fd_reason = run.analysis_reason;
     }
+    // dynamic: identify the contact where the ramp ended (identify() floats the coil to the
+    // surface again and holds the bias)
+    if (dynamic_ && !detail::identify_map_point(probe_, *dynamic_, run, dir_, p, o_.cancelled))
+      throw Toucher::Cancelled{};
     // back off the surface along the tool's -z before anything moves sideways; the next touch
     // floats the coil again
     robot_.move_lin_rel(Pose{0, 0, -(rig_.safe_height_m + floating), 0, 0, 0}, rig_.travel_speed_m_per_s);
@@ -285,6 +299,7 @@ class Mapper {
   std::filesystem::path dir_;
   const MapOptions& o_;
   Toucher toucher_;
+  std::optional<IdentificationSettings> dynamic_;  ///< the dynamic map's identification
 };
 
 }  // namespace
@@ -311,6 +326,12 @@ StiffnessMap map_from_json(const json& j, const std::string& f) {
   format::read_fields(format::JsonSource(j, f), m, kMapFields);
   if (const auto s = j.find("settings"); s != j.end() && !s->is_null())  // maps before it: defaults
     m.settings = indentation_settings_from_json(*s, f + ": settings.");
+  if (const auto d = j.find("dynamic"); d != j.end() && !d->is_null())
+    try {
+      m.dynamic = identification_settings_from_json(*d);
+    } catch (const ConfigError& e) {
+      throw ConfigError(f + ": dynamic: " + e.what());
+    }
   m.surface = detail::trace_from_json(j.value("surface", json()), f + ": surface");
   const auto pts = j.find("points");
   if (pts == j.end() || !pts->is_array()) throw ConfigError(f + ": \"points\" must be an array");
@@ -319,6 +340,7 @@ StiffnessMap map_from_json(const json& j, const std::string& f) {
     if (!q.is_object()) throw ConfigError(f + ": points[" + std::to_string(k) + "] must be an object");
     MapPoint p;
     format::read_fields(format::JsonSource(q, f + ": points[" + std::to_string(k) + "]"), p, kMapPointFields);
+    read_dynamic_point(q, f + ": points[" + std::to_string(k) + "]", p);
     m.points.push_back(p);
   }
   if (m.rows < 1 || m.columns < 1 || m.points.size() != m.resume_index ||

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: Apache-2.0
+// Viscoelastic maps (issue 24, map_dynamic.hpp): a 3 x 3 subset of the pad's grid on palp-sim
+// linked in, quasi-static ramp then identification at every point, in virtual time.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "palp/error.hpp"
+#include "palp/plant/linearisation.hpp"
+#include "palp/plant/phantom.hpp"
+#include "palp/plant/plant.hpp"
+#include "palp/map.hpp"
+#include "palp/probe.hpp"
+#include "palp/result.hpp"
+#include "palp/robot.hpp"
+#include "palp/sim_inproc.hpp"
+#include "sanitized.hpp"
+#include "trace_sim.hpp"
+
+namespace {
+
+using palp::sim::InprocSimulator;
+using palp::sim::test::kSanitized;
+
+/// Rows 4-6, columns 4-6 of the pad's 9 x 9 grid: column 5 lies over a shallow channel (soft).
+palp::Plan pad_centre_subset() {
+  palp::Plan plan = palp::trace_test::pad_plan(9);
+  plan.grid.rows = plan.grid.columns = 3;
+  plan.grid.x0_m += 3 * plan.grid.pitch_x_m;
+  plan.grid.y0_m += 3 * plan.grid.pitch_y_m;
+  return plan;
+}
+
+std::filesystem::path dynamic_map_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+/// The plant as palp-sim builds it, linearised at the bias with the probe over the point (x, y)
+/// of the phantom frame (the work object's) and its mount where the floating tip (I_c) touches.
+palp::plant::Linearisation pad_reference(double x_m, double y_m, double bias_A, double ic_A) {
+  palp::plant::Plant plant(palp::plant::PlantConfig{}, palp::plant::load_shipped_phantom("pad_2d"));
+  const double s_float = palp::plant::linearise_free_air(palp::plant::PlantConfig{}, ic_A).stroke_m;
+  plant.set_mount(x_m, y_m, plant.phantom()->surface_z_m(x_m, y_m) - s_float);
+  return palp::plant::linearise(plant, bias_A);
+}
+
+palp::MapOptions dynamic_map_options() {
+  palp::MapOptions o;
+  o.settings.repetitions = 1;  // the test's time; the ramp is the 2D protocol's
+  o.dynamic.enabled = true;
+  return o;
+}
+
+void print_dynamic_grid(const palp::StiffnessMap& m) {
+  const palp::MapAnalysis a = palp::analyze_map(m);
+  const palp::MapDynamicGrids g = palp::map_dynamic_grids(m);
+  for (int r = 0; r < m.rows; ++r)
+    for (int c = 0; c < m.columns; ++c) {
+      const auto at = static_cast<std::size_t>(r * m.columns + c);
+      std::printf("r%d c%d k_fd %.4f N/mm", r + 1, c + 1, a.k_N_per_m[at].value_or(NAN) * 1e-3);
+      for (std::size_t q = 0; q < palp::dynamic_quantities().size(); ++q)
+        std::printf(" %s %.5g (se %.2g)", palp::dynamic_quantities()[q].key, g.value[q][at].value_or(NAN),
+                    g.se[q][at].value_or(NAN));
+      std::printf("\n");
+    }
+}
+
+TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTheLowestOmegaN) {
+  if (kSanitized) GTEST_SKIP() << "9 indentations and identifications: the release build runs it";
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const auto dir = dynamic_map_dir("palp_map_dynamic");
+  const palp::StiffnessMap m =
+      palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, dynamic_map_options());
+  ASSERT_TRUE(m.complete) << m.stopped_because;
+  print_dynamic_grid(m);
+  // every point within the issue's accuracy of the plant's linearisation there: omega_n 0.5 %,
+  // zeta 5 % (measured: 0.06 % and 0.4 % at worst)
+  const palp::Plan plan = pad_centre_subset();
+  ASSERT_EQ(m.points.size(), 9u);
+  for (const palp::MapPoint& p : m.points) {
+    ASSERT_FALSE(p.dynamic_dir.empty()) << p.dynamic.reason;
+    ASSERT_TRUE(p.dynamic.omega_n_rad_per_s && p.dynamic.zeta && p.dynamic.m_eff_kg && p.dynamic.b_o_N_s_per_m &&
+                p.dynamic.E_storage_Pa && p.dynamic.E_loss_Pa)
+        << "row " << p.row << ", column " << p.column << ": " << p.dynamic.reason;
+    for (const palp::DynamicQuantity& q : palp::dynamic_quantities())
+      EXPECT_GT((p.dynamic.*q.se).value_or(0), 0) << q.key << " has no standard error";
+    const auto ref = pad_reference(plan.x_m(p.column - 1), plan.y_m(p.row - 1), 1.0, 0.5);
+    const double e_w = *p.dynamic.omega_n_rad_per_s / ref.omega_n_rad_per_s - 1;
+    const double e_z = *p.dynamic.zeta / ref.zeta - 1;
+    std::printf("r%d c%d: omega_n %.3f rad/s (plant %.3f, %+.3f %%), zeta %.4f (plant %.4f, %+.2f %%), "
+                "m_eff %.4f kg (plant m %.4f kg)\n",
+                p.row, p.column, *p.dynamic.omega_n_rad_per_s, ref.omega_n_rad_per_s, 100 * e_w, *p.dynamic.zeta,
+                ref.zeta, 100 * e_z, *p.dynamic.m_eff_kg, ref.m_kg);
+    EXPECT_LT(std::abs(e_w), 0.005) << "row " << p.row << ", column " << p.column;
+    EXPECT_LT(std::abs(e_z), 0.05) << "row " << p.row << ", column " << p.column;
+  }
+  // the soft column (5 of the pad, the subset's 2) has the lowest omega_n of its row
+  const palp::MapDynamicGrids g = palp::map_dynamic_grids(m);
+  EXPECT_EQ(g.points_identified, 9u);
+  for (int r = 0; r < 3; ++r) {
+    const auto w = [&](int c) { return g.value[0][static_cast<std::size_t>(r * 3 + c)].value_or(NAN); };
+    EXPECT_LT(w(1), 0.9 * std::min(w(0), w(2))) << "row " << r + 1;
+  }
+  std::printf("virtual time %.1f s\n", sim.virtual_s());
+}
+
+}  // namespace
