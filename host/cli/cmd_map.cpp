@@ -12,6 +12,7 @@
 
 #include "common.hpp"
 #include "export_hdf5.hpp"
+#include "map_dynamic_cli.hpp"
 #include "palp/error.hpp"
 #ifdef PALP_HAVE_HDF5
 #include "palp/hdf5.hpp"
@@ -34,6 +35,7 @@ struct MapCli {
   int max_points = 0;
   double threshold = 0.1;
   std::optional<double> max_force_N;  // depth sensitivity: the ramp's top object force
+  MapDynamicCli dynamic;           // --dynamic and its settings
 };
 
 json analysis_json(const palp::MapAnalysis& a) {
@@ -124,6 +126,7 @@ int map(const Context& ctx, const MapCli& o) {
     options.adaptive->validate(plan.grid.rows, plan.grid.columns);  // before connecting: exit 2
   }
   options.max_force_N = o.max_force_N;
+  options.dynamic = map_dynamic_options(o.dynamic, options.settings);
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
@@ -142,11 +145,13 @@ int map(const Context& ctx, const MapCli& o) {
   if (!m.complete) j["stopped_because"] = m.stopped_because;
   if (m.adaptive) j["adaptive"] = adaptive_json(m);
   j["analysis"] = analysis_json(a);
+  if (json d = map_dynamic_json(m); !d.is_null()) j["analysis"]["dynamic"] = std::move(d);
   if (ctx.json)
     print_json(j);
   else {
     print_map(m, a);
     if (m.adaptive) print_adaptive(m);
+    print_map_dynamic(m);
     std::printf("results in %s (map.json, points/r<row>_c<column>/)\n", o.out_dir.c_str());
   }
   if (!m.complete) {
@@ -167,8 +172,8 @@ int map(const Context& ctx, const MapCli& o) {
 int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
                         bool kf_table, double contrast) {
   // a map directory, or the same map exported as one HDF5 file (palp/hdf5.hpp)
-  std::function<palp::LoadedResult(const palp::MapPoint&)> result_of = [&dir](const palp::MapPoint& p) {
-    return palp::load_result(std::filesystem::path(dir) / p.result_dir);
+  std::function<palp::LoadedResult(const std::string&)> result_of = [&dir](const std::string& result_dir) {
+    return palp::load_result(std::filesystem::path(dir) / result_dir);
   };
   palp::StiffnessMap m;
 #ifdef PALP_HAVE_HDF5
@@ -176,13 +181,13 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
   if (palp::is_hdf5_file(dir)) {
     *file = palp::read_map_hdf5(dir);
     m = file->map;
-    result_of = [file, &dir](const palp::MapPoint& p) {
+    result_of = [file, &dir](const std::string& result_dir) {
       for (const auto& [name, r] : file->results)
-        if (name == p.result_dir) return r;
+        if (name == result_dir) return r;
       std::string why = "not in the file";
       for (const auto& [name, lost] : file->damaged)
-        if (name == p.result_dir) why = "lost when the map was exported: " + lost;
-      throw palp::RecordingError(dir, 0, "point " + p.result_dir + ": " + why);
+        if (name == result_dir) why = "lost when the map was exported: " + lost;
+      throw palp::RecordingError(dir, 0, "point " + result_dir + ": " + why);
     };
   } else {
     m = palp::load_map(dir);
@@ -198,7 +203,7 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
   for (palp::MapPoint& p : m.points) {
     progress.update(done++);
     if (!p.indented || p.result_dir.empty()) continue;
-    palp::IndentationRun run = palp::indentation_run_of(result_of(p));
+    palp::IndentationRun run = palp::indentation_run_of(result_of(p.result_dir));
     run.settings.analysis = params;
     if (kf_table) {
       if (!run.recording.sidecar)
@@ -217,6 +222,10 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
     } else {
       p.k_fd_reason = run.analysis_reason;
     }
+    // dynamic: the identification again from its recording, with the re-analysed indentation
+    if (!p.dynamic_dir.empty())
+      p.dynamic = palp::reanalyse_dynamic_point(result_of(p.dynamic_dir), run.analysis ? &*run.analysis : nullptr,
+                                                run.settings.analysis);
   }
   progress.finish(done);
   const palp::MapAnalysis a = palp::analyze_map(m, contrast);
@@ -224,11 +233,13 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
   j["params"] = palp::indentation_params_json(params);
   if (m.adaptive) j["adaptive"] = adaptive_json(m);
   j["analysis"] = analysis_json(a);
+  if (json d = map_dynamic_json(m); !d.is_null()) j["analysis"]["dynamic"] = std::move(d);
   if (ctx.json)
     print_json(j);
   else {
     print_map(m, a);
     if (m.adaptive) print_adaptive(m);
+    print_map_dynamic(m);
   }
   return kOk;
 }
@@ -268,6 +279,7 @@ void add_map_command(CLI::App& app, Context& ctx) {
                   "Stop each ramp at this object force, N (its top current from K_f, I_c, k_v and "
                   "the depth the previous point reached); refused beyond the coil's current clamp "
                   "or I2t margin (docs/depth-sensitivity.md)");
+  add_map_dynamic_options(cmd, o->dynamic);
   cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
 
 }

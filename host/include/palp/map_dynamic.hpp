@@ -88,6 +88,7 @@ void read_dynamic_point(const nlohmann::json& point, const std::string& where, M
 struct DynamicQuantity {
   const char* key;    ///< "omega_n_rad_per_s"
   const char* title;  ///< "ω_n (rad/s)"
+  const char* unit;   ///< "rad/s" ("1": none)
   std::optional<double> DynamicPoint::*value;
   std::optional<double> DynamicPoint::*se;
 };

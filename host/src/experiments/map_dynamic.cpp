@@ -143,12 +143,12 @@ DynamicPoint reanalyse_dynamic_point(const LoadedResult& r, const an::Indentatio
 
 const std::vector<DynamicQuantity>& dynamic_quantities() {
   static const std::vector<DynamicQuantity> q = {
-      {"omega_n_rad_per_s", "ω_n (rad/s)", &DynamicPoint::omega_n_rad_per_s, &DynamicPoint::omega_n_rad_per_s_se},
-      {"zeta", "ζ", &DynamicPoint::zeta, &DynamicPoint::zeta_se},
-      {"m_eff_kg", "m_eff (kg)", &DynamicPoint::m_eff_kg, &DynamicPoint::m_eff_kg_se},
-      {"b_o_N_s_per_m", "b_o (N s/m)", &DynamicPoint::b_o_N_s_per_m, &DynamicPoint::b_o_N_s_per_m_se},
-      {"E_storage_Pa", "E′ (Pa)", &DynamicPoint::E_storage_Pa, &DynamicPoint::E_storage_Pa_se},
-      {"E_loss_Pa", "E″ (Pa)", &DynamicPoint::E_loss_Pa, &DynamicPoint::E_loss_Pa_se},
+      {"omega_n_rad_per_s", "ω_n (rad/s)", "rad/s", &DynamicPoint::omega_n_rad_per_s, &DynamicPoint::omega_n_rad_per_s_se},
+      {"zeta", "ζ", "1", &DynamicPoint::zeta, &DynamicPoint::zeta_se},
+      {"m_eff_kg", "m_eff (kg)", "kg", &DynamicPoint::m_eff_kg, &DynamicPoint::m_eff_kg_se},
+      {"b_o_N_s_per_m", "b_o (N s/m)", "N s/m", &DynamicPoint::b_o_N_s_per_m, &DynamicPoint::b_o_N_s_per_m_se},
+      {"E_storage_Pa", "E′ (Pa)", "Pa", &DynamicPoint::E_storage_Pa, &DynamicPoint::E_storage_Pa_se},
+      {"E_loss_Pa", "E″ (Pa)", "Pa", &DynamicPoint::E_loss_Pa, &DynamicPoint::E_loss_Pa_se},
   };
   return q;
 }

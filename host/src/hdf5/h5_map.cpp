@@ -10,6 +10,7 @@
 
 #include "experiments/trace_json.hpp"
 #include "hdf5/h5.hpp"
+#include "hdf5/h5_map_dynamic.hpp"
 #include "hdf5/h5_result.hpp"
 #include "palp/error.hpp"
 #include "palp/hdf5.hpp"
@@ -118,10 +119,13 @@ LoadedMap load_map_results(const fs::path& dir) {
   out.map = map_from_json(out.document, (dir / "map.json").string());
   for (const MapPoint& p : out.map.points) {
     if (!p.indented || p.result_dir.empty()) continue;
-    try {
-      out.results.emplace_back(p.result_dir, load_result(dir / p.result_dir));
-    } catch (const Error& e) {  // a damaged point: named, and the others read
-      out.damaged.emplace_back(p.result_dir, e.what());
+    for (const std::string& d : {p.result_dir, p.dynamic_dir}) {  // dynamic: its identification too
+      if (d.empty()) continue;
+      try {
+        out.results.emplace_back(d, load_result(dir / d));
+      } catch (const Error& e) {  // a damaged point: named, and the others read
+        out.damaged.emplace_back(d, e.what());
+      }
     }
   }
   return out;
@@ -131,9 +135,10 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
   const json doc = m.document.is_object() ? m.document : map_to_json(m.map);
   const StiffnessMap map = map_from_json(doc, path.string() + ": map.json");  // what is written, checked
   for (const MapPoint& p : map.points)
-    if (p.indented && !p.result_dir.empty() && !result_of(m, p.result_dir) && !damage_of(m, p.result_dir))
-      throw ConfigError(path.string() + ": point " + p.result_dir +
-                        " was indented but neither its result nor why it is missing is given");
+    for (const std::string& d : {p.result_dir, p.dynamic_dir})  // dynamic: its identification too
+      if (p.indented && !d.empty() && !result_of(m, d) && !damage_of(m, d))
+        throw ConfigError(path.string() + ": point " + d +
+                          " was measured but neither its result nor why it is missing is given");
   write_palp_file(path, overwrite, kHdf5ContentMap, [&](hid_t root) {
     const Where w{path.string(), "/map"};
     const Id g = create_group(root, w);
@@ -144,6 +149,7 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
       put_json_scalars(s.get(), "", *settings, {"analysis"}, w.at("settings"));
     write_map_analysis(g.get(), w.at("analysis"), map, doc);
     write_map_surface(g.get(), w.at("surface"), map, doc);
+    write_map_dynamic_grids(g.get(), w.at("dynamic"), map);
     const Where wp = w.at("points");
     const Id points = create_group(g.get(), wp);
     for (std::size_t k = 0; k < map.points.size(); ++k) {
@@ -158,6 +164,16 @@ void write_map_hdf5(const fs::path& path, const LoadedMap& m, Overwrite overwrit
       put_json_scalars(q.get(), "", doc["points"][k], {}, wq);  // k_fd_N_per_mm, reason, result_dir, ...
       if (const std::string* why = r != nullptr || p.result_dir.empty() ? nullptr : damage_of(m, p.result_dir))
         put_attr(q.get(), "damaged", std::string_view(*why), wq);
+      // dynamic: the point's identification as its own group beside it ("r1_c1_dynamic")
+      if (p.indented && !p.dynamic_dir.empty()) {
+        const Where wd = wp.at(dynamic_group_name(p));
+        if (const LoadedResult* id = result_of(m, p.dynamic_dir)) {
+          write_result_group(points.get(), wd, *id);
+        } else {
+          const Id lost = create_group(points.get(), wd);
+          put_attr(lost.get(), "damaged", std::string_view(*damage_of(m, p.dynamic_dir)), wd);
+        }
+      }
     }
   });
 }
@@ -186,6 +202,13 @@ LoadedMap read_map_hdf5(const fs::path& path) {
       out.damaged.emplace_back(p.result_dir, get_string_attr(q.get(), "damaged", wp.at(name)));
     else
       out.results.emplace_back(p.result_dir, read_result_group(points.get(), name.c_str(), wp, path));
+    if (p.dynamic_dir.empty()) continue;  // dynamic: the point's identification group
+    const std::string dname = dynamic_group_name(p);
+    const Id d = open_group(points.get(), dname.c_str(), wp);
+    if (has_attr(d.get(), "damaged"))
+      out.damaged.emplace_back(p.dynamic_dir, get_string_attr(d.get(), "damaged", wp.at(dname)));
+    else
+      out.results.emplace_back(p.dynamic_dir, read_result_group(points.get(), dname.c_str(), wp, path));
   }
   return out;
 }
