@@ -37,4 +37,8 @@ Section trace_section(const TracedSurface& surface);
 Section map_section(const StiffnessMap& map, const MapAnalysis& analysis,
                     const std::filesystem::path& dir);
 
+/// A dynamic map's grids (map_dynamic.hpp): a heat map per quantity (ω_n, ζ, m_eff, b_o, E′, E″)
+/// with each point's standard error on hover and a link to its identification; column means.
+Section map_dynamic_section(const StiffnessMap& map);
+
 }  // namespace palp::report
