@@ -10,6 +10,7 @@
 
 #include "format/field_table.hpp"
 #include "map_dynamic_step.hpp"
+#include "analysis/number_text.hpp"
 #include "palp/analysis/dynamics.hpp"
 #include "palp/error.hpp"
 #include "palp/identification_result.hpp"
@@ -212,8 +213,8 @@ void check_dynamic_settings(const IdentificationSettings& s, const IndentationSe
   if (!s.in_contact) throw ConfigError("dynamic map: the identification must be in contact (in_contact)");
   const double I0 = indentation.analysis.bias_current_A;
   if (std::abs(s.bias_A - I0) > 1e-9)
-    throw ConfigError("dynamic map: the identification's bias " + std::to_string(s.bias_A) +
-                      " A is not the indentation analysis' I_0 " + std::to_string(I0) +
+    throw ConfigError("dynamic map: the identification's bias " + analysis::detail::number_text(s.bias_A) +
+                      " A is not the indentation analysis' I_0 " + analysis::detail::number_text(I0) +
                       " A (k_o and delta0 would be at another operating point)");
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "palp/error.hpp"
@@ -108,7 +109,46 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
     const auto w = [&](int c) { return g.value[0][static_cast<std::size_t>(r * 3 + c)].value_or(NAN); };
     EXPECT_LT(w(1), 0.9 * std::min(w(0), w(2))) << "row " << r + 1;
   }
+  // offline: each point's identification re-analysed from its recording gives the map's numbers,
+  // and map.json reads back with them
+  const palp::StiffnessMap back = palp::load_map(dir);
+  ASSERT_EQ(back.points.size(), m.points.size());
+  ASSERT_TRUE(back.dynamic.has_value());
+  for (std::size_t k = 0; k < m.points.size(); ++k) {
+    const palp::MapPoint& p = back.points[k];
+    palp::IndentationRun ind = palp::indentation_run_of(palp::load_result(dir / p.result_dir));
+    palp::analyze_run(ind);
+    const palp::DynamicPoint again = palp::reanalyse_dynamic_point(
+        palp::load_result(dir / p.dynamic_dir), ind.analysis ? &*ind.analysis : nullptr, ind.settings.analysis);
+    for (const palp::DynamicQuantity& q : palp::dynamic_quantities()) {
+      const double want = (m.points[k].dynamic.*q.value).value_or(NAN);
+      EXPECT_NEAR((p.dynamic.*q.value).value_or(NAN), want, 1e-12 * std::abs(want)) << q.key << " in map.json";
+      EXPECT_NEAR((again.*q.value).value_or(NAN), want, 1e-9 * std::abs(want)) << q.key << " re-analysed";
+    }
+  }
   std::printf("virtual time %.1f s\n", sim.virtual_s());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MapDynamic, AnIdentificationAtAnotherBiasThanTheAnalysisIsRefusedBeforeAnythingMoves) {
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const auto dir = dynamic_map_dir("palp_map_dynamic_bias");
+  palp::MapOptions o = dynamic_map_options();
+  o.dynamic.settings = palp::map_dynamic_settings(o.settings);
+  o.dynamic.settings->bias_A = 1.2;
+  const palp::Pose before = robot->pose();
+  try {
+    palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
+    FAIL() << "a 1.2 A identification was accepted for a 1.0 A analysis";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "dynamic map: the identification's bias 1.2 A is not the indentation analysis' I_0 "
+                           "1 A (k_o and delta0 would be at another operating point)");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+  EXPECT_EQ(robot->pose().z_m, before.z_m) << "the arm moved";
+  EXPECT_EQ(probe.status().i_cmd_A, 0.0) << "the coil carries current";
 }
 
 }  // namespace
