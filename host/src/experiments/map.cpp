@@ -158,6 +158,9 @@ class Mapper {
     m.columns = plan_.grid.columns;
     m.settings = o_.settings;
     m.max_force_N = o_.max_force_N;
+    if (o_.resume && m.dynamic.has_value() != dynamic_.has_value())  // dynamic: as it began
+      throw ConfigError(file.string() + (m.dynamic ? ": a dynamic map: resume it with the dynamic option"
+                                                   : ": a quasi-static map: resume it without the dynamic option"));
     m.dynamic = dynamic_;
     m.surface.plan_name = plan_.name;
     m.surface.rows = m.rows;

@@ -151,4 +151,31 @@ TEST(MapDynamic, AnIdentificationAtAnotherBiasThanTheAnalysisIsRefusedBeforeAnyt
   EXPECT_EQ(probe.status().i_cmd_A, 0.0) << "the coil carries current";
 }
 
+TEST(MapDynamic, ResumingADynamicMapWithoutTheDynamicOptionIsRefusedNamingIt) {
+  InprocSimulator sim({.phantom = "pad_2d", .robot = true});
+  palp::Probe probe(sim.transport());
+  auto robot = palp::connect_robot(sim.robot_uri());
+  const auto dir = dynamic_map_dir("palp_map_dynamic_resume");
+  palp::StiffnessMap begun;  // a dynamic map stopped before its first point
+  begun.rows = begun.columns = begun.surface.rows = begun.surface.columns = 3;
+  begun.dynamic = palp::map_dynamic_settings(begun.settings);
+  palp::save_map(dir, begun);
+  palp::MapOptions o;
+  o.resume = true;
+  try {
+    palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
+    FAIL() << "a dynamic map was resumed quasi-statically";
+  } catch (const palp::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "map.json").string() + ": a dynamic map: resume it with the dynamic option");
+  }
+  o.dynamic.enabled = true;
+  o.settings.repetitions = 1;
+  o.settings.stop_A = 1.5;  // a short ramp: this test is about the bookkeeping
+  o.cancelled = [] { return true; };  // resumes (accepted), then stops at once
+  const palp::StiffnessMap m = palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
+  EXPECT_EQ(m.stopped_because, "cancelled");
+  EXPECT_TRUE(m.dynamic.has_value());
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
