@@ -11,14 +11,14 @@ using nlohmann::json;
 
 void add_map_dynamic_options(CLI::App* cmd, MapDynamicCli& o) {
   cmd->add_flag("--dynamic", o.enabled,
-                "After each point's ramp, identify the contact at the analysis' bias (a 15 s multisine "
-                "per point) and map omega_n, zeta, m_eff, b_o, E' and E'' beside k_fd; each point's "
+                "After each point's ramp, identify the contact at the analysis' bias (a 16 s multisine "
+                "per point, contact_multisine_fast) and map omega_n, zeta, m_eff, b_o, E' and E'' beside k_fd; each point's "
                 "identification in OUT_DIR/points/r<row>_c<column>_dynamic/");
   cmd->add_option("--dynamic-amplitude-A", o.amplitude_A,
-                  "--dynamic: the multisine's true peak about the bias, A (default 0.1)")
+                  "--dynamic: the multisine's true peak about the bias, A (default 0.03)")
       ->check(CLI::Range(0.001, 0.45));
   cmd->add_option("--dynamic-measured-periods", o.measured_periods,
-                  "--dynamic: multisine periods averaged (>= 2 for a noise estimate; default 2)")
+                  "--dynamic: multisine periods averaged (>= 2 for a noise estimate; default 3)")
       ->check(CLI::Range(1, 100));
 }
 
