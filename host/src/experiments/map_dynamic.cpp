@@ -29,7 +29,7 @@ IdentificationSettings map_multisine() {
   return IdentificationSettings::preset(IdentificationPreset::contact_multisine_fast);
 }
 
-std::optional<double> positive(double v) {
+std::optional<double> finite_or_none(double v) {
   return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
 }
 
@@ -44,6 +44,11 @@ struct Analysed {
   json analysis;  ///< null when the run has no fit
 };
 
+void analyse_with_indentation(const IdentificationRun& run, const an::IndentationResult* ind,
+                              const an::IndentationParams& params, Analysed& out);
+
+/// A point's values; what the analysis refuses (a fit without a positive zeta, a line with
+/// G = 0: ConfigError) leaves the rest absent with its reason instead of stopping the map.
 Analysed analyse(const IdentificationRun& run, const an::IndentationResult* ind,
                  const an::IndentationParams& params) {
   Analysed out;
@@ -54,11 +59,24 @@ Analysed analyse(const IdentificationRun& run, const an::IndentationResult* ind,
   }
   const an::SecondOrderFit& fit = *run.fit;
   out.analysis = sweep_summary_json(*run.frf, fit);
-  d.omega_n_rad_per_s = positive(fit.omega_n_rad_per_s);
-  d.omega_n_rad_per_s_se = positive(fit.omega_n_rad_per_s_se);
-  d.zeta = positive(fit.zeta);
-  d.zeta_se = positive(fit.zeta_se);
+  d.omega_n_rad_per_s = finite_or_none(fit.omega_n_rad_per_s);
+  d.omega_n_rad_per_s_se = finite_or_none(fit.omega_n_rad_per_s_se);
+  d.zeta = finite_or_none(fit.zeta);
+  d.zeta_se = finite_or_none(fit.zeta_se);
   if (!fit.adequate) add_reason(d.reason, "the second-order model is not adequate (normalised cost above its limit)");
+  try {
+    analyse_with_indentation(run, ind, params, out);
+  } catch (const ConfigError& e) {
+    add_reason(d.reason, e.what());
+  }
+  return out;
+}
+
+/// m_eff, b_o (with the indentation's k_o) and the moduli (with its delta0) into `out`.
+void analyse_with_indentation(const IdentificationRun& run, const an::IndentationResult* ind,
+                              const an::IndentationParams& params, Analysed& out) {
+  const an::SecondOrderFit& fit = *run.fit;
+  DynamicPoint& d = out.point;
   const an::InstrumentDynamics& inst = run.settings.instrument;
   if (ind == nullptr || !ind->k_tangent_at_delta0_N_per_m.value || *ind->k_tangent_at_delta0_N_per_m.value <= 0) {
     add_reason(d.reason, "no static k_o at the bias: " +
@@ -81,7 +99,7 @@ Analysed analyse(const IdentificationRun& run, const an::IndentationResult* ind,
   if (ind == nullptr || !ind->delta0_m.value || *ind->delta0_m.value <= 0 || run.frf->lines.empty()) {
     add_reason(d.reason, "no moduli: " + (ind == nullptr || ind->delta0_m.value ? std::string("no delta0")
                                                                                  : ind->delta0_m.reason));
-    return out;
+    return;
   }
   const an::Viscoelastic v = an::viscoelastic_from(run.frf->lines, inst, *ind->delta0_m.value, params.tip_radius_m);
   out.analysis["viscoelastic"] = viscoelastic_json(v);
@@ -97,15 +115,14 @@ Analysed analyse(const IdentificationRun& run, const an::IndentationResult* ind,
     var += s * s;
   }
   const double n = static_cast<double>(v.lines.size());
-  d.E_storage_Pa = positive(E1 / n);
-  d.E_loss_Pa = positive(E2 / n);
+  d.E_storage_Pa = finite_or_none(E1 / n);
+  d.E_loss_Pa = finite_or_none(E2 / n);
   if (noise) {
-    d.E_storage_Pa_se = d.E_loss_Pa_se = positive(std::sqrt(var) / n);
+    d.E_storage_Pa_se = d.E_loss_Pa_se = finite_or_none(std::sqrt(var) / n);
   } else {
     add_reason(d.reason, "no standard error of the moduli: the lines carry no noise estimate");
   }
   if (v.flagged) add_reason(d.reason, v.flag_reason);
-  return out;
 }
 
 }  // namespace

@@ -91,6 +91,14 @@ TEST(MapDynamic, WithoutTheIndentationOnlyOmegaNAndZetaAndTheReasonForTheRest) {
   palp::IdentificationRun none;
   none.analysis_reason = "too few lines";
   EXPECT_EQ(palp::dynamic_point_of(none, nullptr, {}).reason, "too few lines");
+  // a fit the decomposition refuses (zeta <= 0) leaves m_eff, b_o and the moduli absent with
+  // the refusal as the reason, rather than stopping a map
+  palp::IdentificationRun bad = kelvin_voigt_run();
+  bad.fit->zeta = -0.01;
+  const an::IndentationResult ind = indentation_at_bias();
+  const palp::DynamicPoint r = palp::dynamic_point_of(bad, &ind, {});
+  EXPECT_FALSE(r.m_eff_kg || r.E_storage_Pa);
+  EXPECT_NE(r.reason.find("zeta"), std::string::npos) << r.reason;
 }
 
 TEST(MapDynamic, PointKeysRoundTripThroughMapJsonAndABadValueIsNamed) {
