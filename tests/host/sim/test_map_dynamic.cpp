@@ -84,7 +84,8 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
   ASSERT_TRUE(m.complete) << m.stopped_because;
   print_dynamic_grid(m);
   // every point within the accuracy of the plant's linearisation there: omega_n 0.5 %,
-  // zeta 5 % (measured with contact_multisine_fast on the viscoelastic pad: 0.09 % and 0.6 %)
+  // zeta 5 % (measured with contact_multisine_fast on the viscoelastic, oblique-contact pad: 0.11 %
+  // and 0.9 %)
   const palp::Plan plan = pad_centre_subset();
   ASSERT_EQ(m.points.size(), 9u);
   for (const palp::MapPoint& p : m.points) {
