@@ -172,9 +172,10 @@ int map(const Context& ctx, const MapCli& o) {
 int analyze_map_command(const Context& ctx, const std::string& dir, const palp::analysis::IndentationParams& params,
                         bool kf_table, double contrast) {
   // a map directory, or the same map exported as one HDF5 file (palp/hdf5.hpp)
-  std::function<palp::LoadedResult(const std::string&)> result_of = [&dir](const std::string& result_dir) {
-    return palp::load_result(std::filesystem::path(dir) / result_dir);
-  };
+  std::function<palp::LoadedResult(const std::string&)> result_of =
+      [&dir](const std::string& result_dir) {
+        return palp::load_result(std::filesystem::path(dir) / result_dir);
+      };
   palp::StiffnessMap m;
 #ifdef PALP_HAVE_HDF5
   auto file = std::make_shared<palp::LoadedMap>();
@@ -224,7 +225,8 @@ int analyze_map_command(const Context& ctx, const std::string& dir, const palp::
     }
     // dynamic: the identification again from its recording, with the re-analysed indentation
     if (!p.dynamic_dir.empty())
-      p.dynamic = palp::reanalyse_dynamic_point(result_of(p.dynamic_dir), run.analysis ? &*run.analysis : nullptr,
+      p.dynamic = palp::reanalyse_dynamic_point(result_of(p.dynamic_dir),
+                                                run.analysis ? &*run.analysis : nullptr,
                                                 run.settings.analysis);
   }
   progress.finish(done);

@@ -10,10 +10,12 @@ namespace palpctl {
 using nlohmann::json;
 
 void add_map_dynamic_options(CLI::App* cmd, MapDynamicCli& o) {
-  cmd->add_flag("--dynamic", o.enabled,
-                "After each point's ramp, identify the contact at the analysis' bias (a 16 s multisine "
-                "per point, contact_multisine_fast) and map omega_n, zeta, m_eff, b_o, E' and E'' beside k_fd; each point's "
-                "identification in OUT_DIR/points/r<row>_c<column>_dynamic/");
+  cmd->add_flag(
+      "--dynamic", o.enabled,
+      "After each point's ramp, identify the contact at the analysis' bias (a 16 s multisine "
+      "per point, contact_multisine_fast) and map omega_n, zeta, m_eff, b_o, E' and E'' beside "
+      "k_fd; each point's "
+      "identification in OUT_DIR/points/r<row>_c<column>_dynamic/");
   cmd->add_option("--dynamic-amplitude-A", o.amplitude_A,
                   "--dynamic: the multisine's true peak about the bias, A (default 0.03)")
       ->check(CLI::Range(0.001, 0.45));
@@ -22,12 +24,14 @@ void add_map_dynamic_options(CLI::App* cmd, MapDynamicCli& o) {
       ->check(CLI::Range(1, 100));
 }
 
-palp::MapDynamicOptions map_dynamic_options(const MapDynamicCli& o, const palp::IndentationSettings& indentation) {
+palp::MapDynamicOptions map_dynamic_options(const MapDynamicCli& o,
+                                            const palp::IndentationSettings& indentation) {
   palp::MapDynamicOptions d;
   d.enabled = o.enabled;
   if (!o.enabled) {
     if (o.amplitude_A || o.measured_periods)
-      throw palp::ConfigError("--dynamic-amplitude-A and --dynamic-measured-periods need --dynamic");
+      throw palp::ConfigError(
+          "--dynamic-amplitude-A and --dynamic-measured-periods need --dynamic");
     return d;
   }
   palp::IdentificationSettings s = palp::map_dynamic_settings(indentation);

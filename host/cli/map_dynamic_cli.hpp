@@ -14,14 +14,15 @@ namespace palpctl {
 
 struct MapDynamicCli {
   bool enabled = false;
-  std::optional<double> amplitude_A;   ///< the multisine's peak; the default settings' otherwise
+  std::optional<double> amplitude_A;  ///< the multisine's peak; the default settings' otherwise
   std::optional<int> measured_periods;
 };
 
 /// --dynamic, --dynamic-amplitude-A, --dynamic-measured-periods.
 void add_map_dynamic_options(CLI::App* cmd, MapDynamicCli& o);
 /// The SDK options they give, with the map's indentation settings (map_dynamic_settings).
-palp::MapDynamicOptions map_dynamic_options(const MapDynamicCli& o, const palp::IndentationSettings& indentation);
+palp::MapDynamicOptions map_dynamic_options(const MapDynamicCli& o,
+                                            const palp::IndentationSettings& indentation);
 
 /// The map's dynamic grids in lab units: {"points_identified": n, "<key>": [[row]...],
 /// "<key>_se": ...} with null where a point has none; null when no point was identified.

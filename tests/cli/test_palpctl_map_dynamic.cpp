@@ -34,11 +34,12 @@ class PalpctlMapDynamic : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // the work object is palp-sim's phantom frame; columns 4 and 5 of the pad's grid (5: soft)
-    std::ofstream(dir_ / "rig.json") << R"({"format_version": 1, "robot_uri": "modbus://127.0.0.1:)" << rp
-                                     << R"(", "probe_uri": ")" << sim_.uri() << R"(",
+    std::ofstream(dir_ / "rig.json") << R"({"format_version": 1, "robot_uri": "modbus://127.0.0.1:)"
+                                     << rp << R"(", "probe_uri": ")" << sim_.uri() << R"(",
         "tool_tcp_mm_deg": [0, 0, 200, 0, 0, 0], "safe_height_mm": 8,
         "work_object": {"name": "pad", "pose_mm_deg": [600, 0, 300, 0, 0, 180]}})";
-    std::ofstream(dir_ / "plan.json") << R"({"format_version": 1, "name": "pad 1 x 2", "work_object": "pad",
+    std::ofstream(dir_ / "plan.json")
+        << R"({"format_version": 1, "name": "pad 1 x 2", "work_object": "pad",
         "grid": {"rows": 1, "columns": 2, "origin_mm": [40, 45], "pitch_mm": [10, 10]},
         "contact_E_star_Pa": 3.3e6})";
   }
@@ -49,14 +50,22 @@ class PalpctlMapDynamic : public ::testing::Test {
     return palpctl(args, timeout_s);
   }
   std::vector<std::string> map_args(const fs::path& out) const {
-    return {"map", "--rig", (dir_ / "rig.json").string(), "--plan", (dir_ / "plan.json").string(),
-            "--out-dir", out.string(), "--reps", "1"};
+    return {"map",
+            "--rig",
+            (dir_ / "rig.json").string(),
+            "--plan",
+            (dir_ / "plan.json").string(),
+            "--out-dir",
+            out.string(),
+            "--reps",
+            "1"};
   }
   SimServer sim_{{"--phantom", "pad_2d", "--robot-port", "0"}};
   fs::path dir_;
 };
 
-TEST_F(PalpctlMapDynamic, MapDynamicWritesEachPointsIdentificationAndAnalyzeMapGivesTheSameGridsAgain) {
+TEST_F(PalpctlMapDynamic,
+       MapDynamicWritesEachPointsIdentificationAndAnalyzeMapGivesTheSameGridsAgain) {
   const fs::path out = dir_ / "m";
   std::vector<std::string> args = map_args(out);
   args.insert(args.begin(), "--json");
@@ -68,7 +77,8 @@ TEST_F(PalpctlMapDynamic, MapDynamicWritesEachPointsIdentificationAndAnalyzeMapG
   ASSERT_TRUE(d.is_object()) << r.out;
   EXPECT_EQ(d["points_identified"], 2);
   // the soft column (5) resonates lower than its stiff neighbour (4)
-  EXPECT_LT(d["omega_n_rad_per_s"][0][1].get<double>(), 0.9 * d["omega_n_rad_per_s"][0][0].get<double>());
+  EXPECT_LT(d["omega_n_rad_per_s"][0][1].get<double>(),
+            0.9 * d["omega_n_rad_per_s"][0][0].get<double>());
   for (const char* p : {"r1_c1_dynamic", "r1_c2_dynamic"}) {
     EXPECT_TRUE(fs::exists(out / "points" / p / "result.json")) << p;
     EXPECT_TRUE(fs::exists(out / "points" / p / "sweep.csv")) << p;
@@ -78,7 +88,8 @@ TEST_F(PalpctlMapDynamic, MapDynamicWritesEachPointsIdentificationAndAnalyzeMapG
   EXPECT_EQ(json::parse(again.out)["analysis"]["dynamic"], d);
 #ifdef PALP_HAVE_HDF5
   const fs::path h5 = dir_ / "m.h5";
-  const ProcessResult exported = run({"export", "--format", "hdf5", "--input", out.string(), "--out", h5.string()});
+  const ProcessResult exported =
+      run({"export", "--format", "hdf5", "--input", out.string(), "--out", h5.string()});
   ASSERT_EQ(exported.code, 0) << exported.err;
   const ProcessResult from_h5 = run({"--json", "analyze", "map", "--input", h5.string()});
   ASSERT_EQ(from_h5.code, 0) << from_h5.err;
@@ -89,7 +100,8 @@ TEST_F(PalpctlMapDynamic, MapDynamicWritesEachPointsIdentificationAndAnalyzeMapG
   ASSERT_EQ(report.code, 0) << report.err;
   std::ifstream in(page);
   const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* id : {"map-dynamic-omega_n_rad_per_s", "map-dynamic-zeta", "map-dynamic-E_loss_Pa"})
+  for (const char* id :
+       {"map-dynamic-omega_n_rad_per_s", "map-dynamic-zeta", "map-dynamic-E_loss_Pa"})
     EXPECT_NE(html.find(id), std::string::npos) << id;
 }
 
@@ -98,7 +110,8 @@ TEST_F(PalpctlMapDynamic, DynamicSettingsWithoutDynamicAreRefusedNamingTheFlag) 
   args.insert(args.end(), {"--dynamic-amplitude-A", "0.05"});
   const ProcessResult r = run(args);
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--dynamic-amplitude-A and --dynamic-measured-periods need --dynamic"), std::string::npos)
+  EXPECT_NE(r.err.find("--dynamic-amplitude-A and --dynamic-measured-periods need --dynamic"),
+            std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "refused"));
 }

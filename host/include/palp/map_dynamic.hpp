@@ -66,7 +66,8 @@ IdentificationSettings map_dynamic_settings(const IndentationSettings& indentati
 /// analysis at the same bias (k_o = k_tangent at delta0 with its standard error, delta0; null:
 /// no decomposition and no moduli, with the reason), with the instrument's m_v, b_v, k_v from
 /// run.settings.instrument and the tip radius from `params`.
-DynamicPoint dynamic_point_of(const IdentificationRun& run, const analysis::IndentationResult* indentation,
+DynamicPoint dynamic_point_of(const IdentificationRun& run,
+                              const analysis::IndentationResult* indentation,
                               const analysis::IndentationParams& params);
 
 /// The point's identification again from its result directory's recording (identification_

@@ -112,9 +112,10 @@ class Mapper {
          const MapOptions& o)
       : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
         toucher_(probe, robot, rig_, o.cancelled),
-        dynamic_(o.dynamic.enabled ? std::optional<IdentificationSettings>(
-                                         o.dynamic.settings.value_or(map_dynamic_settings(o.settings)))
-                                   : std::nullopt) {
+        dynamic_(o.dynamic.enabled
+                     ? std::optional<IdentificationSettings>(
+                           o.dynamic.settings.value_or(map_dynamic_settings(o.settings)))
+                     : std::nullopt) {
     rig.validate();
     plan.validate();
     if (!rig.work_object)
@@ -159,8 +160,9 @@ class Mapper {
     m.settings = o_.settings;
     m.max_force_N = o_.max_force_N;
     if (o_.resume && m.dynamic.has_value() != dynamic_.has_value())  // dynamic: as it began
-      throw ConfigError(file.string() + (m.dynamic ? ": a dynamic map: resume it with the dynamic option"
-                                                   : ": a quasi-static map: resume it without the dynamic option"));
+      throw ConfigError(file.string() +
+                        (m.dynamic ? ": a dynamic map: resume it with the dynamic option"
+                                   : ": a quasi-static map: resume it without the dynamic option"));
     m.dynamic = dynamic_;
     m.surface.plan_name = plan_.name;
     m.surface.rows = m.rows;

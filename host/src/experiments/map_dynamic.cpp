@@ -63,7 +63,9 @@ Analysed analyse(const IdentificationRun& run, const an::IndentationResult* ind,
   d.omega_n_rad_per_s_se = finite_or_none(fit.omega_n_rad_per_s_se);
   d.zeta = finite_or_none(fit.zeta);
   d.zeta_se = finite_or_none(fit.zeta_se);
-  if (!fit.adequate) add_reason(d.reason, "the second-order model is not adequate (normalised cost above its limit)");
+  if (!fit.adequate)
+    add_reason(d.reason,
+               "the second-order model is not adequate (normalised cost above its limit)");
   try {
     analyse_with_indentation(run, ind, params, out);
   } catch (const ConfigError& e) {
@@ -78,14 +80,16 @@ void analyse_with_indentation(const IdentificationRun& run, const an::Indentatio
   const an::SecondOrderFit& fit = *run.fit;
   DynamicPoint& d = out.point;
   const an::InstrumentDynamics& inst = run.settings.instrument;
-  if (ind == nullptr || !ind->k_tangent_at_delta0_N_per_m.value || *ind->k_tangent_at_delta0_N_per_m.value <= 0) {
+  if (ind == nullptr || !ind->k_tangent_at_delta0_N_per_m.value ||
+      *ind->k_tangent_at_delta0_N_per_m.value <= 0) {
     add_reason(d.reason, "no static k_o at the bias: " +
                              (ind == nullptr ? std::string("the indentation was not analysed")
                                              : ind->k_tangent_at_delta0_N_per_m.reason));
   } else {
     const an::DerivedSe se = an::derived_se(*ind);
     const double k_o = *ind->k_tangent_at_delta0_N_per_m.value;
-    const an::Decomposition dec = an::decompose(fit, k_o, inst, se.k_tangent_at_delta0_N_per_m.value.value_or(0));
+    const an::Decomposition dec =
+        an::decompose(fit, k_o, inst, se.k_tangent_at_delta0_N_per_m.value.value_or(0));
     out.analysis.update(decomposition_json(dec));
     d.m_eff_kg = dec.m_eff_kg;
     d.b_o_N_s_per_m = dec.b_o_N_s_per_m;
@@ -96,12 +100,15 @@ void analyse_with_indentation(const IdentificationRun& run, const an::Indentatio
       add_reason(d.reason, "no standard error of k_o: " + se.k_tangent_at_delta0_N_per_m.reason);
     }
   }
-  if (ind == nullptr || !ind->delta0_m.value || *ind->delta0_m.value <= 0 || run.frf->lines.empty()) {
-    add_reason(d.reason, "no moduli: " + (ind == nullptr || ind->delta0_m.value ? std::string("no delta0")
-                                                                                 : ind->delta0_m.reason));
+  if (ind == nullptr || !ind->delta0_m.value || *ind->delta0_m.value <= 0 ||
+      run.frf->lines.empty()) {
+    add_reason(d.reason,
+               "no moduli: " + (ind == nullptr || ind->delta0_m.value ? std::string("no delta0")
+                                                                      : ind->delta0_m.reason));
     return;
   }
-  const an::Viscoelastic v = an::viscoelastic_from(run.frf->lines, inst, *ind->delta0_m.value, params.tip_radius_m);
+  const an::Viscoelastic v =
+      an::viscoelastic_from(run.frf->lines, inst, *ind->delta0_m.value, params.tip_radius_m);
   out.analysis["viscoelastic"] = viscoelastic_json(v);
   // the band's mean moduli; per line sigma(Re, Im of 1/G) = sigma_G / |G|^2, over 2a
   double E1 = 0, E2 = 0, var = 0;
@@ -137,15 +144,18 @@ IdentificationSettings map_dynamic_settings(const IndentationSettings& indentati
   return s;
 }
 
-DynamicPoint dynamic_point_of(const IdentificationRun& run, const an::IndentationResult* indentation,
+DynamicPoint dynamic_point_of(const IdentificationRun& run,
+                              const an::IndentationResult* indentation,
                               const an::IndentationParams& params) {
   return analyse(run, indentation, params).point;
 }
 
-DynamicPoint reanalyse_dynamic_point(const LoadedResult& r, const an::IndentationResult* indentation,
+DynamicPoint reanalyse_dynamic_point(const LoadedResult& r,
+                                     const an::IndentationResult* indentation,
                                      const an::IndentationParams& params) {
   if (r.experiment != "identification" || r.recordings.empty())
-    throw ConfigError(r.dir.string() + ": not an identification result (experiment \"" + r.experiment + "\")");
+    throw ConfigError(r.dir.string() + ": not an identification result (experiment \"" +
+                      r.experiment + "\")");
   IdentificationRun run = identification_run_of(r.recordings.front().second);
   analyze_identification(run);
   return dynamic_point_of(run, indentation, params);
@@ -153,11 +163,14 @@ DynamicPoint reanalyse_dynamic_point(const LoadedResult& r, const an::Indentatio
 
 const std::vector<DynamicQuantity>& dynamic_quantities() {
   static const std::vector<DynamicQuantity> q = {
-      {"omega_n_rad_per_s", "ω_n (rad/s)", "rad/s", &DynamicPoint::omega_n_rad_per_s, &DynamicPoint::omega_n_rad_per_s_se},
+      {"omega_n_rad_per_s", "ω_n (rad/s)", "rad/s", &DynamicPoint::omega_n_rad_per_s,
+       &DynamicPoint::omega_n_rad_per_s_se},
       {"zeta", "ζ", "1", &DynamicPoint::zeta, &DynamicPoint::zeta_se},
       {"m_eff_kg", "m_eff (kg)", "kg", &DynamicPoint::m_eff_kg, &DynamicPoint::m_eff_kg_se},
-      {"b_o_N_s_per_m", "b_o (N s/m)", "N s/m", &DynamicPoint::b_o_N_s_per_m, &DynamicPoint::b_o_N_s_per_m_se},
-      {"E_storage_Pa", "E′ (Pa)", "Pa", &DynamicPoint::E_storage_Pa, &DynamicPoint::E_storage_Pa_se},
+      {"b_o_N_s_per_m", "b_o (N s/m)", "N s/m", &DynamicPoint::b_o_N_s_per_m,
+       &DynamicPoint::b_o_N_s_per_m_se},
+      {"E_storage_Pa", "E′ (Pa)", "Pa", &DynamicPoint::E_storage_Pa,
+       &DynamicPoint::E_storage_Pa_se},
       {"E_loss_Pa", "E″ (Pa)", "Pa", &DynamicPoint::E_loss_Pa, &DynamicPoint::E_loss_Pa_se},
   };
   return q;
@@ -217,21 +230,26 @@ MapDynamicGrids map_dynamic_grids(const StiffnessMap& m) {
 
 namespace detail {
 
-void check_dynamic_settings(const IdentificationSettings& s, const IndentationSettings& indentation) {
+void check_dynamic_settings(const IdentificationSettings& s,
+                            const IndentationSettings& indentation) {
   s.validate();
-  if (!s.in_contact) throw ConfigError("dynamic map: the identification must be in contact (in_contact)");
+  if (!s.in_contact)
+    throw ConfigError("dynamic map: the identification must be in contact (in_contact)");
   const double I0 = indentation.analysis.bias_current_A;
   if (std::abs(s.bias_A - I0) > 1e-9)
-    throw ConfigError("dynamic map: the identification's bias " + analysis::detail::number_text(s.bias_A) +
-                      " A is not the indentation analysis' I_0 " + analysis::detail::number_text(I0) +
-                      " A (k_o and delta0 would be at another operating point)");
+    throw ConfigError(
+        "dynamic map: the identification's bias " + analysis::detail::number_text(s.bias_A) +
+        " A is not the indentation analysis' I_0 " + analysis::detail::number_text(I0) +
+        " A (k_o and delta0 would be at another operating point)");
 }
 
-bool identify_map_point(Probe& probe, const IdentificationSettings& s, const IndentationRun& indentation,
-                        const std::filesystem::path& map_dir, MapPoint& p, const std::function<bool()>& cancelled) {
+bool identify_map_point(Probe& probe, const IdentificationSettings& s,
+                        const IndentationRun& indentation, const std::filesystem::path& map_dir,
+                        MapPoint& p, const std::function<bool()>& cancelled) {
   IdentificationRun run = identify(probe, s, {}, cancelled);
   if (run.interrupted) return false;
-  const Analysed a = analyse(run, indentation.analysis ? &*indentation.analysis : nullptr, indentation.settings.analysis);
+  const Analysed a = analyse(run, indentation.analysis ? &*indentation.analysis : nullptr,
+                             indentation.settings.analysis);
   p.dynamic_dir = dynamic_dir_of(p.result_dir);
   p.dynamic = a.point;
   write_identification_result(map_dir / p.dynamic_dir, run, a.analysis, Overwrite::yes);

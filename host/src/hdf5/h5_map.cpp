@@ -208,7 +208,8 @@ LoadedMap read_map_hdf5(const fs::path& path) {
     if (has_attr(d.get(), "damaged"))
       out.damaged.emplace_back(p.dynamic_dir, get_string_attr(d.get(), "damaged", wp.at(dname)));
     else
-      out.results.emplace_back(p.dynamic_dir, read_result_group(points.get(), dname.c_str(), wp, path));
+      out.results.emplace_back(p.dynamic_dir,
+                               read_result_group(points.get(), dname.c_str(), wp, path));
   }
   return out;
 }

@@ -12,7 +12,8 @@ void write_map_dynamic_grids(hid_t parent, const Where& w, const StiffnessMap& m
   if (g.points_identified == 0) return;
   const Id group = create_group(parent, w);
   const auto rows = static_cast<std::size_t>(g.rows), columns = static_cast<std::size_t>(g.columns);
-  const auto grid = [&](const std::string& name, const std::vector<std::optional<double>>& v, const char* unit) {
+  const auto grid = [&](const std::string& name, const std::vector<std::optional<double>>& v,
+                        const char* unit) {
     std::vector<double> out(v.size(), std::numeric_limits<double>::quiet_NaN());
     for (std::size_t k = 0; k < v.size(); ++k)
       if (v[k]) out[k] = *v[k];

@@ -13,8 +13,8 @@
 
 namespace palp::report {
 
-using nlohmann::json;
 using detail::num;
+using nlohmann::json;
 
 namespace {
 
@@ -38,16 +38,17 @@ Section map_dynamic_section(const StiffnessMap& map) {
   s.title = "Viscoelastic map";
   std::string band;
   if (map.dynamic)
-    band = " The identification: a " + std::string(sweep_method_name(map.dynamic->method)) + " of " +
-           num(map.dynamic->amplitude_A) + " A peak about the bias " + num(map.dynamic->bias_A) + " A over " +
-           num(map.dynamic->f_lo_Hz) + "–" + num(map.dynamic->f_hi_Hz) + " Hz, " +
-           std::to_string(map.dynamic->measured_periods) + " periods of " + num(1.0 / map.dynamic->fundamental_Hz) +
-           " s measured.";
+    band = " The identification: a " + std::string(sweep_method_name(map.dynamic->method)) +
+           " of " + num(map.dynamic->amplitude_A) + " A peak about the bias " +
+           num(map.dynamic->bias_A) + " A over " + num(map.dynamic->f_lo_Hz) + "–" +
+           num(map.dynamic->f_hi_Hz) + " Hz, " + std::to_string(map.dynamic->measured_periods) +
+           " periods of " + num(1.0 / map.dynamic->fundamental_Hz) + " s measured.";
   s.text = "At each point, after the quasi-static ramp, the contact was identified at the bias (" +
            std::to_string(g.points_identified) + " of " + std::to_string(g.rows * g.columns) +
-           " points): ω_n and ζ of the second-order fit; m_eff = (k_v + k_o)/ω_n² and b_o = 2ζ(k_v + k_o)/ω_n − b_v "
-           "with the static tangent k_o at δ0; E′ and E″ the contact's storage and loss moduli k′/(2a), k″/(2a), "
-           "averaged over the measured lines." + band;
+           " points): ω_n and ζ of the second-order fit; m_eff = (k_v + k_o)/ω_n² and "
+           "b_o = 2ζ(k_v + k_o)/ω_n − b_v with the static tangent k_o at δ0; E′ and E″ the "
+           "contact's storage and loss moduli k′/(2a), k″/(2a), averaged over the measured lines." +
+           band;
   for (std::size_t q = 0; q < dynamic_quantities().size(); ++q) {
     const DynamicQuantity& d = dynamic_quantities()[q];
     std::vector<vega::HeatCell> cells;
@@ -71,15 +72,19 @@ Section map_dynamic_section(const StiffnessMap& map) {
     for (json& m : spec["marks"])
       if (m.value("name", "") == "heat_cells")
         m["encode"]["enter"]["tooltip"] = {
-            {"signal", "{'point': 'row ' + datum.row + ', column ' + datum.column, '" + std::string(d.title) +
-                           "': isValid(datum.value) ? format(datum.value, '.4~g') + (isValid(datum.se) ? ' ± ' + "
+            {"signal", "{'point': 'row ' + datum.row + ', column ' + datum.column, '" +
+                           std::string(d.title) +
+                           "': isValid(datum.value) ? format(datum.value, '.4~g') + "
+                           "(isValid(datum.se) ? ' ± ' + "
                            "format(datum.se, '.2~g') : '') : '–', 'reason': datum.reason}"}};
     spec["description"] = std::string(d.title) + " heat map of a dynamic map";
     Figure f;
     f.id = std::string("map-dynamic-") + d.key;
     f.title = std::string(d.title) + " per grid point";
-    f.caption = std::string(d.title) + " at each point (grey: none), rows down and columns across as the k_fd map. "
-                "In the page, hover a cell for its value ± standard error; click it to open its identification.";
+    f.caption = std::string(d.title) +
+                " at each point (grey: none), rows down and columns across as the k_fd map. "
+                "In the page, hover a cell for its value ± standard error; click it to open its "
+                "identification.";
     f.spec = std::move(spec);
     s.figures.push_back(std::move(f));
   }
@@ -94,7 +99,8 @@ Section map_dynamic_section(const StiffnessMap& map) {
       double sum = 0;
       int n = 0;
       for (int r = 1; r <= map.rows; ++r)
-        if (const auto& v = g.value[q][static_cast<std::size_t>((r - 1) * map.columns + c - 1)]) sum += *v, ++n;
+        if (const auto& v = g.value[q][static_cast<std::size_t>((r - 1) * map.columns + c - 1)])
+          sum += *v, ++n;
       row.push_back(n > 0 ? num(sum / n) : "–");
     }
     t.rows.push_back(std::move(row));

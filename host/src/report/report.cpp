@@ -204,7 +204,8 @@ Report map_report(const fs::path& dir) {
   rep.header.emplace_back("Directory", fs::absolute(dir).lexically_normal().string());
   rep.sections.push_back(map_section(m, a, dir));
   if (map_dynamic_grids(m).points_identified > 0)  // dynamic: its grids
-    rep.sections.push_back(secondary("map-dynamic", "Viscoelastic map", [&] { return map_dynamic_section(m); }));
+    rep.sections.push_back(
+        secondary("map-dynamic", "Viscoelastic map", [&] { return map_dynamic_section(m); }));
   if (!m.surface.points.empty())
     rep.sections.push_back(secondary("surface", "The surface", [&] { return trace_section(m.surface); }));
   return rep;

@@ -67,8 +67,8 @@ void print_dynamic_grid(const palp::StiffnessMap& m) {
       const auto at = static_cast<std::size_t>(r * m.columns + c);
       std::printf("r%d c%d k_fd %.4f N/mm", r + 1, c + 1, a.k_N_per_m[at].value_or(NAN) * 1e-3);
       for (std::size_t q = 0; q < palp::dynamic_quantities().size(); ++q)
-        std::printf(" %s %.5g (se %.2g)", palp::dynamic_quantities()[q].key, g.value[q][at].value_or(NAN),
-                    g.se[q][at].value_or(NAN));
+        std::printf(" %s %.5g (se %.2g)", palp::dynamic_quantities()[q].key,
+                    g.value[q][at].value_or(NAN), g.se[q][at].value_or(NAN));
       std::printf("\n");
     }
 }
@@ -79,8 +79,8 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
   palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
   const auto dir = dynamic_map_dir("palp_map_dynamic");
-  const palp::StiffnessMap m =
-      palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, dynamic_map_options());
+  const palp::StiffnessMap m = palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim),
+                                              pad_centre_subset(), dir, dynamic_map_options());
   ASSERT_TRUE(m.complete) << m.stopped_because;
   print_dynamic_grid(m);
   // every point within the accuracy of the plant's linearisation there: omega_n 0.5 %,
@@ -90,18 +90,19 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
   ASSERT_EQ(m.points.size(), 9u);
   for (const palp::MapPoint& p : m.points) {
     ASSERT_FALSE(p.dynamic_dir.empty()) << p.dynamic.reason;
-    ASSERT_TRUE(p.dynamic.omega_n_rad_per_s && p.dynamic.zeta && p.dynamic.m_eff_kg && p.dynamic.b_o_N_s_per_m &&
-                p.dynamic.E_storage_Pa && p.dynamic.E_loss_Pa)
+    ASSERT_TRUE(p.dynamic.omega_n_rad_per_s && p.dynamic.zeta && p.dynamic.m_eff_kg &&
+                p.dynamic.b_o_N_s_per_m && p.dynamic.E_storage_Pa && p.dynamic.E_loss_Pa)
         << "row " << p.row << ", column " << p.column << ": " << p.dynamic.reason;
     for (const palp::DynamicQuantity& q : palp::dynamic_quantities())
       EXPECT_GT((p.dynamic.*q.se).value_or(0), 0) << q.key << " has no standard error";
     const auto ref = pad_reference(plan.x_m(p.column - 1), plan.y_m(p.row - 1), 1.0, 0.5);
     const double e_w = *p.dynamic.omega_n_rad_per_s / ref.omega_n_rad_per_s - 1;
     const double e_z = *p.dynamic.zeta / ref.zeta - 1;
-    std::printf("r%d c%d: omega_n %.3f rad/s (plant %.3f, %+.3f %%), zeta %.4f (plant %.4f, %+.2f %%), "
-                "m_eff %.4f kg (plant m %.4f kg)\n",
-                p.row, p.column, *p.dynamic.omega_n_rad_per_s, ref.omega_n_rad_per_s, 100 * e_w, *p.dynamic.zeta,
-                ref.zeta, 100 * e_z, *p.dynamic.m_eff_kg, ref.m_kg);
+    std::printf(
+        "r%d c%d: omega_n %.3f rad/s (plant %.3f, %+.3f %%), zeta %.4f (plant %.4f, %+.2f %%), "
+        "m_eff %.4f kg (plant m %.4f kg)\n",
+        p.row, p.column, *p.dynamic.omega_n_rad_per_s, ref.omega_n_rad_per_s, 100 * e_w,
+        *p.dynamic.zeta, ref.zeta, 100 * e_z, *p.dynamic.m_eff_kg, ref.m_kg);
     EXPECT_LT(std::abs(e_w), 0.005) << "row " << p.row << ", column " << p.column;
     EXPECT_LT(std::abs(e_z), 0.05) << "row " << p.row << ", column " << p.column;
   }
@@ -109,7 +110,9 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
   const palp::MapDynamicGrids g = palp::map_dynamic_grids(m);
   EXPECT_EQ(g.points_identified, 9u);
   for (int r = 0; r < 3; ++r) {
-    const auto w = [&](int c) { return g.value[0][static_cast<std::size_t>(r * 3 + c)].value_or(NAN); };
+    const auto w = [&](int c) {
+      return g.value[0][static_cast<std::size_t>(r * 3 + c)].value_or(NAN);
+    };
     EXPECT_LT(w(1), 0.9 * std::min(w(0), w(2))) << "row " << r + 1;
   }
   // offline: each point's identification re-analysed from its recording gives the map's numbers,
@@ -122,11 +125,14 @@ TEST(MapDynamic, ThreeByThreePadSubsetGivesEveryPointsDynamicsAndTheSoftColumnTh
     palp::IndentationRun ind = palp::indentation_run_of(palp::load_result(dir / p.result_dir));
     palp::analyze_run(ind);
     const palp::DynamicPoint again = palp::reanalyse_dynamic_point(
-        palp::load_result(dir / p.dynamic_dir), ind.analysis ? &*ind.analysis : nullptr, ind.settings.analysis);
+        palp::load_result(dir / p.dynamic_dir), ind.analysis ? &*ind.analysis : nullptr,
+        ind.settings.analysis);
     for (const palp::DynamicQuantity& q : palp::dynamic_quantities()) {
       const double want = (m.points[k].dynamic.*q.value).value_or(NAN);
-      EXPECT_NEAR((p.dynamic.*q.value).value_or(NAN), want, 1e-12 * std::abs(want)) << q.key << " in map.json";
-      EXPECT_NEAR((again.*q.value).value_or(NAN), want, 1e-9 * std::abs(want)) << q.key << " re-analysed";
+      EXPECT_NEAR((p.dynamic.*q.value).value_or(NAN), want, 1e-12 * std::abs(want))
+          << q.key << " in map.json";
+      EXPECT_NEAR((again.*q.value).value_or(NAN), want, 1e-9 * std::abs(want))
+          << q.key << " re-analysed";
     }
   }
   std::printf("virtual time %.1f s\n", sim.virtual_s());
@@ -146,8 +152,10 @@ TEST(MapDynamic, AnIdentificationAtAnotherBiasThanTheAnalysisIsRefusedBeforeAnyt
     palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
     FAIL() << "a 1.2 A identification was accepted for a 1.0 A analysis";
   } catch (const palp::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "dynamic map: the identification's bias 1.2 A is not the indentation analysis' I_0 "
-                           "1 A (k_o and delta0 would be at another operating point)");
+    EXPECT_STREQ(
+        e.what(),
+        "dynamic map: the identification's bias 1.2 A is not the indentation analysis' I_0 "
+        "1 A (k_o and delta0 would be at another operating point)");
   }
   EXPECT_FALSE(std::filesystem::exists(dir));
   EXPECT_EQ(robot->pose().z_m, before.z_m) << "the arm moved";
@@ -169,24 +177,28 @@ TEST(MapDynamic, ResumingADynamicMapWithoutTheDynamicOptionIsRefusedNamingIt) {
     palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
     FAIL() << "a dynamic map was resumed quasi-statically";
   } catch (const palp::ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), (dir / "map.json").string() + ": a dynamic map: resume it with the dynamic option");
+    EXPECT_EQ(std::string(e.what()),
+              (dir / "map.json").string() + ": a dynamic map: resume it with the dynamic option");
   }
   o.dynamic.enabled = true;
   o.settings.repetitions = 1;
-  o.settings.stop_A = 1.5;  // a short ramp: this test is about the bookkeeping
+  o.settings.stop_A = 1.5;            // a short ramp: this test is about the bookkeeping
   o.cancelled = [] { return true; };  // resumes (accepted), then stops at once
-  const palp::StiffnessMap m = palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
+  const palp::StiffnessMap m =
+      palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), pad_centre_subset(), dir, o);
   EXPECT_EQ(m.stopped_because, "cancelled");
   EXPECT_TRUE(m.dynamic.has_value());
   std::filesystem::remove_all(dir);
 }
 
 /// A dynamic 3 x 3 map of `phantom` over `plan` (one ramp repetition), complete.
-palp::StiffnessMap dynamic_map_of(const char* phantom, const palp::Plan& plan, const std::filesystem::path& dir) {
+palp::StiffnessMap dynamic_map_of(const char* phantom, const palp::Plan& plan,
+                                  const std::filesystem::path& dir) {
   InprocSimulator sim({.phantom = phantom, .robot = true});
   palp::Probe probe(sim.transport());
   auto robot = palp::connect_robot(sim.robot_uri());
-  palp::StiffnessMap m = palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), plan, dir, dynamic_map_options());
+  palp::StiffnessMap m = palp::map_plan(probe, *robot, palp::trace_test::sim_rig(sim), plan, dir,
+                                        dynamic_map_options());
   EXPECT_TRUE(m.complete) << phantom << ": " << m.stopped_because;
   std::filesystem::remove_all(dir);
   return m;
@@ -198,16 +210,18 @@ TEST(MapDynamic, ADampingInclusionShowsInZetaBoAndELossAndNotInKfd) {
   // column 4 (grid points (5, 4) and its 4-neighbours inside, the diagonals outside); rows 4-6,
   // columns 3-5 of it against the same points of the pad
   const palp::Plan plan = pad_subset(3);
-  const palp::StiffnessMap pad = dynamic_map_of("pad_2d", plan, dynamic_map_dir("palp_map_dynamic_pad"));
-  const palp::StiffnessMap inc = dynamic_map_of("pad_2d_damping", plan, dynamic_map_dir("palp_map_dynamic_damping"));
+  const palp::StiffnessMap pad =
+      dynamic_map_of("pad_2d", plan, dynamic_map_dir("palp_map_dynamic_pad"));
+  const palp::StiffnessMap inc =
+      dynamic_map_of("pad_2d_damping", plan, dynamic_map_dir("palp_map_dynamic_damping"));
   ASSERT_EQ(pad.points.size(), 9u);
   ASSERT_EQ(inc.points.size(), 9u);
   for (std::size_t k = 0; k < 9; ++k) {
     const palp::MapPoint& a = pad.points[k];
     const palp::MapPoint& b = inc.points[k];
-    ASSERT_TRUE(a.k_fd_N_per_m && b.k_fd_N_per_m && a.dynamic.zeta && b.dynamic.zeta && a.dynamic.b_o_N_s_per_m &&
-                b.dynamic.b_o_N_s_per_m && a.dynamic.E_loss_Pa && b.dynamic.E_loss_Pa && a.dynamic.omega_n_rad_per_s &&
-                b.dynamic.omega_n_rad_per_s)
+    ASSERT_TRUE(a.k_fd_N_per_m && b.k_fd_N_per_m && a.dynamic.zeta && b.dynamic.zeta &&
+                a.dynamic.b_o_N_s_per_m && b.dynamic.b_o_N_s_per_m && a.dynamic.E_loss_Pa &&
+                b.dynamic.E_loss_Pa && a.dynamic.omega_n_rad_per_s && b.dynamic.omega_n_rad_per_s)
         << "row " << a.row << ", column " << a.column;
     const int row = a.row + 3, column = a.column + 2;  // on the pad's grid
     const bool inside = std::abs(row - 5) + std::abs(column - 4) <= 1;
@@ -215,8 +229,9 @@ TEST(MapDynamic, ADampingInclusionShowsInZetaBoAndELossAndNotInKfd) {
     const double b_o = *b.dynamic.b_o_N_s_per_m / *a.dynamic.b_o_N_s_per_m;
     const double E_loss = *b.dynamic.E_loss_Pa / *a.dynamic.E_loss_Pa;
     const double w = *b.dynamic.omega_n_rad_per_s / *a.dynamic.omega_n_rad_per_s;
-    std::printf("pad (%d, %d) %s: damping / pad: k_fd %.4f, omega_n %.4f, zeta %.3f, b_o %.3f, E'' %.3f\n", row,
-                column, inside ? "inside " : "outside", k_fd, w, zeta, b_o, E_loss);
+    std::printf(
+        "pad (%d, %d) %s: damping / pad: k_fd %.4f, omega_n %.4f, zeta %.3f, b_o %.3f, E'' %.3f\n",
+        row, column, inside ? "inside " : "outside", k_fd, w, zeta, b_o, E_loss);
     EXPECT_NEAR(k_fd, 1.0, 0.01) << "k_fd at (" << row << ", " << column << ")";
     EXPECT_NEAR(w, 1.0, 0.01) << "omega_n at (" << row << ", " << column << ")";
     if (inside) {

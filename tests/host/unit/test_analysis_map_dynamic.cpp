@@ -56,12 +56,13 @@ TEST(MapDynamic, KelvinVoigtContactGivesTheInstrumentsMassItsDampingAndTheModuli
   an::IndentationParams params;
   params.tip_radius_m = kTip;
   const palp::DynamicPoint d = palp::dynamic_point_of(run, &ind, params);
-  ASSERT_TRUE(d.omega_n_rad_per_s && d.zeta && d.m_eff_kg && d.b_o_N_s_per_m && d.E_storage_Pa && d.E_loss_Pa)
+  ASSERT_TRUE(d.omega_n_rad_per_s && d.zeta && d.m_eff_kg && d.b_o_N_s_per_m && d.E_storage_Pa &&
+              d.E_loss_Pa)
       << d.reason;
   const double k = kKv + kKo, b = kBv + kBo;
   EXPECT_NEAR(*d.omega_n_rad_per_s, std::sqrt(k / kMv), 1e-6 * std::sqrt(k / kMv));
   EXPECT_NEAR(*d.zeta, b / (2 * std::sqrt(k * kMv)), 1e-6);
-  EXPECT_NEAR(*d.m_eff_kg, kMv, 1e-6 * kMv);             // k_o explains all the stiffness
+  EXPECT_NEAR(*d.m_eff_kg, kMv, 1e-6 * kMv);  // k_o explains all the stiffness
   EXPECT_NEAR(*d.b_o_N_s_per_m, kBo, 1e-5 * kBo);
   // E' = k_o / (2a) at every line, E'' = w b_o / (2a): their band means; a from the Sneddon sphere
   const double a = kKo / (2 * *d.E_storage_Pa);
@@ -86,7 +87,8 @@ TEST(MapDynamic, WithoutTheIndentationOnlyOmegaNAndZetaAndTheReasonForTheRest) {
   const palp::DynamicPoint d = palp::dynamic_point_of(kelvin_voigt_run(), nullptr, {});
   EXPECT_TRUE(d.omega_n_rad_per_s && d.zeta);
   EXPECT_FALSE(d.m_eff_kg || d.b_o_N_s_per_m || d.E_storage_Pa || d.E_loss_Pa);
-  EXPECT_NE(d.reason.find("no static k_o at the bias: the indentation was not analysed"), std::string::npos)
+  EXPECT_NE(d.reason.find("no static k_o at the bias: the indentation was not analysed"),
+            std::string::npos)
       << d.reason;
   palp::IdentificationRun none;
   none.analysis_reason = "too few lines";
