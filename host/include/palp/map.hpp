@@ -48,6 +48,10 @@ struct MapPoint {
   std::string k_fd_reason;
   std::optional<double> delta0_m, k_tangent_N_per_m;
   std::string result_dir;              ///< relative to the map's directory ("points/r1_c1")
+  // alignment (MapOptions::align_to_normal): the tool's axis at this point's touch and ramp
+  std::string aligned_by = "none";     ///< "none" (the work object's z), "trace" or "local trace"
+  double tilt_rad = 0;                 ///< the tool's z from the work object's z, as used
+  std::vector<double> tool_axis;       ///< aligned: the tool's z (unit, work-object frame)
 };
 
 struct StiffnessMap {
@@ -87,6 +91,18 @@ struct MapOptions {
   // point's top current from the depth the previous point reached (force_limit.hpp); refused
   // (ConfigError) beyond the device's current clamp or I2t margin. Absent: settings.stop_A.
   std::optional<double> max_force_N;
+  // alignment (issue 24): at each point the tool's z along the surface normal, started above the
+  // point's tangent plane along that normal, so the guarded approach, the ramp and the back-off
+  // all run normal to the surface (docs/normal-aligned-maps.md)
+  bool align_to_normal = false;
+  /// The normals to align with: a trace of the same plan in the same work object (trace_surface,
+  /// complete, normals from its grid). None: a local trace at each point, four touches along the
+  /// work object's z at (x +- d, y +- d), d = local_trace_offset_m, their tangent plane.
+  std::optional<TracedSurface> align_trace;
+  double local_trace_offset_m = 2e-3;
+  /// A normal tilted more from the work object's z is refused: ConfigError before anything moves
+  /// for a trace's, the point's reason (not indented) for a local trace's.
+  double max_tilt_rad = 0.5235987755982988;  // 30 deg
 };
 
 /// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and

@@ -8,6 +8,7 @@
 
 #include "palp/force_limit.hpp"
 #include "palp/result.hpp"
+#include "map_align.hpp"
 #include "toucher.hpp"
 #include "format/field_table.hpp"
 #include "trace_json.hpp"
@@ -33,6 +34,10 @@ const Field<MapPoint> kMapPointFields[] = {
     {"delta0_mm", &MapPoint::delta0_m, format::kMm, Need::optional},
     {"k_tangent_N_per_mm", &MapPoint::k_tangent_N_per_m, format::kNPerMm, Need::optional},
     {"result_dir", &MapPoint::result_dir, 1.0, Need::optional},
+    // alignment (docs/result-format.md "Maps")
+    {"align", &MapPoint::aligned_by, 1.0, Need::optional},
+    {"tilt_deg", &MapPoint::tilt_rad, format::kDeg, Need::optional},
+    {"tool_axis", &MapPoint::tool_axis, 1.0, Need::optional},
 };
 
 const Field<StiffnessMap> kMapFields[] = {
@@ -108,7 +113,7 @@ class Mapper {
   Mapper(Probe& probe, Robot& robot, const Rig& rig, const Plan& plan, const std::filesystem::path& dir,
          const MapOptions& o)
       : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
-        toucher_(probe, robot, rig_, o.cancelled) {
+        toucher_(probe, robot, rig_, o.cancelled), aligner_(toucher_, rig_, plan, o) {
     rig.validate();
     plan.validate();
     if (!rig.work_object)
@@ -119,6 +124,7 @@ class Mapper {
     o.settings.validate();
     if (o.max_force_N) check_max_force(o.settings, *o.max_force_N, CoilLimits::of(probe.params()));
     toucher_.set_work_object(rig.work_object->pose);
+    aligner_.check();
   }
 
   StiffnessMap run() {
@@ -234,8 +240,14 @@ class Mapper {
     toucher_.prepare();
     const double clearance = rig_.safe_height_m + toucher_.floating_stroke_m();
     toucher_.rise_to(clearance);
-    const Pose start = toucher_.tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -clearance);
-    Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
+    // along the work object's z or the surface normal (map_align.hpp)
+    const detail::MapAim aim = aligner_.aim(row, column, clearance);
+    p.aligned_by = aim.aligned_by;
+    p.tilt_rad = aim.tilt_rad;
+    p.tool_axis = aim.tool_axis;
+    Touch t;
+    t.reason = aim.reason;
+    if (aim.ok) t = toucher_.touch(aim.start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
     p.surface = t.at_rest;
     p.surface.row = row;
     p.surface.column = column;
@@ -285,6 +297,7 @@ class Mapper {
   std::filesystem::path dir_;
   const MapOptions& o_;
   Toucher toucher_;
+  detail::MapAligner aligner_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <thread>
 
 #include "experiment_common.hpp"
@@ -44,6 +45,27 @@ Pose pose_of(const rb::Transform& t) {
   p.x_m = t.t[0], p.y_m = t.t[1], p.z_m = t.t[2];
   rb::abc_from_rotation(t.r, p.a_rad, p.b_rad, p.c_rad);
   return p;
+}
+
+Pose orientation_along(const double n[3], double a, double b_near, double c_near) {
+  // v = Rz(-A) n = (sin B cos C, -sin C, cos B cos C)
+  const double v[3] = {std::cos(a) * n[0] + std::sin(a) * n[1], -std::sin(a) * n[0] + std::cos(a) * n[1],
+                       n[2]};
+  const double cos_c = std::sqrt(std::max(0.0, 1.0 - v[1] * v[1]));
+  if (cos_c < 1e-6)
+    throw ConfigError("a tool axis perpendicular to the base's z turned by A has no B (cos C = 0): "
+                      "tilt the work object or the surface less");
+  auto wrapped = [](double d) { return std::remainder(d, 2 * std::numbers::pi); };
+  Pose best;
+  double best_d = INFINITY;
+  for (double sign : {1.0, -1.0}) {
+    const double b = std::atan2(sign * v[0], sign * v[2]);
+    const double c = std::atan2(-v[1], sign * cos_c);
+    const double d = std::hypot(wrapped(b - b_near), wrapped(c - c_near));
+    if (d < best_d) best_d = d, best.b_rad = b, best.c_rad = c;
+  }
+  best.a_rad = a;
+  return best;
 }
 
 struct Toucher::Approach {
@@ -164,12 +186,29 @@ Pose Toucher::tcp_at(double x, double y, double z) const {
   return pose_of(t);
 }
 
+Pose Toucher::tcp_along(const double point[3], const double normal[3], double distance) const {
+  const double wo_p[3] = {point[0] - distance * normal[0], point[1] - distance * normal[1],
+                          point[2] - distance * normal[2]};
+  double n[3];
+  rb::rotate(wo_.r, normal, n);
+  const Pose wo = pose_of(wo_);
+  Pose p = orientation_along(n, wo.a_rad, wo.b_rad, wo.c_rad);
+  double t[3];
+  rb::apply(wo_, wo_p, t);
+  p.x_m = t[0], p.y_m = t[1], p.z_m = t[2];
+  return p;
+}
+
 void Toucher::rise_to(double clearance) {
   const Pose now = robot_.pose();
   const double b[3] = {now.x_m, now.y_m, now.z_m};
   double w[3];
   rb::apply(wo_inv_, b, w);
-  if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
+  if (w[2] > -clearance) {
+    Pose up = tcp_at(w[0], w[1], -clearance);
+    up.a_rad = now.a_rad, up.b_rad = now.b_rad, up.c_rad = now.c_rad;
+    robot_.move_lin(up, rig_.travel_speed_m_per_s);
+  }
 }
 
 void Toucher::make_safe_and_raise() {

@@ -16,6 +16,13 @@ Pose pose_of(const proto::rb::Transform& t);
 /// A measured point as the surface analysis takes it (base frame; the tool's z is the axis).
 analysis::ApproachAtRest approach_at_rest(const TracePoint& measured);
 
+/// KUKA A, B, C (rad; in the returned Pose, position zero) of the tool orientation whose z axis
+/// is `axis` (unit, base frame) with A kept at a_rad, so the tool does not spin about the base's
+/// z: R = Rz(A) Ry(B) Rx(C) has z column Rz(A) (sin B cos C, -sin C, cos B cos C), which gives
+/// sin C and B up to the sign of cos C; of the two solutions the one nearer (b_near, c_near).
+/// ConfigError when that axis leaves B undefined (cos C = 0: the axis horizontal across Rz(A) x).
+Pose orientation_along(const double axis[3], double a_rad, double b_near_rad, double c_near_rad);
+
 /// The probe's whole stroke: the tip never reaches further ahead of the TCP.
 inline constexpr double kFullStrokeM = 34e-3;
 
@@ -50,7 +57,12 @@ class Toucher {
   void set_work_object(const Pose& work_object);
   /// The TCP over work-object point (x, y, z) with the tool's z along the work object's z.
   Pose tcp_at(double x, double y, double z) const;
-  /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0.
+  /// The TCP `distance_m` back from work-object point `point_m` along `normal` (unit, work-object
+  /// frame, into the specimen), the tool's z along that normal and the work object's A kept
+  /// (orientation_along): the start of an approach normal to the surface (map --align normal).
+  Pose tcp_along(const double point_m[3], const double normal[3], double distance_m) const;
+  /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0,
+  /// keeping the tool's orientation (a tilted tool rises tilted).
   void rise_to(double clearance_m);
   /// make_safe(), then up until the tip is clear of the safe height even at full stroke.
   void make_safe_and_raise();
