@@ -79,9 +79,11 @@ TEST_F(PalpctlMapAlign, ATraceOfAnotherGridExits2BeforeAnythingMovesAndWritesNoM
   t.rows = t.columns = 2;
   t.work_object = palp::Pose{0.600, 0.0, 0.300, 0, 0, std::numbers::pi};
   t.complete = t.normals_from_grid = true;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4; ++k) {  // touched along the phantom's z (base -z) 10 mm apart
     palp::TracePoint p;
     p.row = k / 2 + 1, p.column = k % 2 + 1, p.ok = true;
+    p.tcp_at_rest = palp::Pose{0.600 + 0.010 * p.column, -0.010 * p.row, 0.330, 0, 0, std::numbers::pi};
+    p.stroke_at_rest_m = 0.030;
     t.points.push_back(p);
   }
   t.resume_index = 4;
