@@ -52,6 +52,10 @@ struct MapPoint {
   std::string aligned_by = "none";     ///< "none" (the work object's z), "trace" or "local trace"
   double tilt_rad = 0;                 ///< the tool's z from the work object's z, as used
   std::vector<double> tool_axis;       ///< aligned: the tool's z (unit, work-object frame)
+  /// Aligned: the current added to the touch's and the ramp's (and the analysis' I_c and I_0) so
+  /// that the tilted coil floats and works where it does upright (its weight along the axis
+  /// changes with the tilt; K_f changes with the stroke position): k_v (s_upright - s) / K_f.
+  double coil_offset_A = 0;
 };
 
 struct StiffnessMap {

@@ -38,6 +38,7 @@ const Field<MapPoint> kMapPointFields[] = {
     {"align", &MapPoint::aligned_by, 1.0, Need::optional},
     {"tilt_deg", &MapPoint::tilt_rad, format::kDeg, Need::optional},
     {"tool_axis", &MapPoint::tool_axis, 1.0, Need::optional},
+    {"coil_offset_A", &MapPoint::coil_offset_A, 1.0, Need::optional},
 };
 
 const Field<StiffnessMap> kMapFields[] = {
@@ -173,6 +174,10 @@ class Mapper {
     try {
       toucher_.check_cancelled();
       toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);
+      if (o_.align_to_normal) {  // the upright coil's floating position: the tilts' reference
+        toucher_.turn_upright();
+        toucher_.compensate_tilt(true);
+      }
       // the next point: row-major, or the planner's from the points measured (as map.json has them)
       auto next = [&]() -> std::optional<analysis::GridCell> {
         if (m.adaptive) return next_adaptive(m, m.adaptive_ended);
@@ -261,7 +266,10 @@ class Mapper {
     const double floating = toucher_.floating_stroke_m();
     toucher_.release_coil();
     toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
-    IndentationRun run = indent(probe_, point_settings(), {}, o_.cancelled);
+    // a tilted coil floats and ramps with the current that makes up its weight along the axis
+    p.coil_offset_A = toucher_.current_offset_A();
+    IndentationRun run =
+        indent(probe_, detail::with_current_offset(point_settings(), p.coil_offset_A), {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
     if (const auto top = ramp_top_of(run)) reached_depth_m_ = top->depth_m;
     p.result_dir = point_dir(row, column);

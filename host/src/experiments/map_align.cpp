@@ -72,6 +72,15 @@ void check_trace(const TracedSurface& t, const Rig& rig, const Plan& plan, doubl
 
 }  // namespace
 
+IndentationSettings with_current_offset(IndentationSettings s, double offset_A) {
+  if (offset_A == 0.0) return s;
+  s.start_A += offset_A;
+  s.stop_A += offset_A;
+  s.analysis.contact_current_A += offset_A;
+  s.analysis.bias_current_A += offset_A;
+  return s;
+}
+
 void MapAligner::check() const {
   const MapOptions& o = o_;
   if (o.align_trace && !o.align_to_normal)

@@ -23,6 +23,10 @@ struct MapAim {
   std::vector<double> tool_axis;    ///< aligned: the tool's z (unit, work-object frame)
 };
 
+/// The settings with every current (the ramp's start and top, the analysis' I_c and I_0) raised
+/// by offset_A: the ramp of a tilted coil floated with Toucher's tilt compensation.
+IndentationSettings with_current_offset(IndentationSettings s, double offset_A);
+
 class MapAligner {
  public:
   MapAligner(Toucher& toucher, const Rig& rig, const Plan& plan, const MapOptions& options)

@@ -3,6 +3,7 @@
 #include "toucher.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,17 @@ constexpr double kSearchSpeed = 10e-3;  // the coarse search, m/s
 constexpr double kBackOff = 0.5e-3;     // from the first touch before the slow approach
 constexpr double kMeasurableM = 4e-6;   // overtravel that tells a contact stiffness
 constexpr double kStaleInputS = 1.0;    // longest the robot's input may lag the contact line
+constexpr double kTurnedRad = 0.1 * std::numbers::pi / 180;  // a turn that re-floats the coil
+constexpr double kCurrentStepA = 1e-3;  // a smaller tilt compensation is left out
+
+std::array<double, 3> tool_z(const Pose& p) {
+  const rb::Rotation r = rb::rotation_from_abc(p.a_rad, p.b_rad, p.c_rad);
+  return {r.m[0][2], r.m[1][2], r.m[2][2]};
+}
+
+double angle(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0));
+}
 
 std::string mm(double m) {
   char b[32];
@@ -96,15 +108,18 @@ void Toucher::prepare() {
   Params p = probe_.params();
   p.contact_output = proto::ContactOutputMode::active_high;
   probe_.set_params(p);
-  experiment::float_coil(probe_, rig_.watch_current_A, "is watch_current_A above the float current?");
+  experiment::float_coil(probe_, rig_.watch_current_A + offset_A_, "is watch_current_A above the float current?");
   wait_device(kSettleS);
   floating_stroke_m_ = stroke_now_m();
+  floating_axis_ = tool_z(robot_.pose());
   floating_ = true;
+  if (!upright_stroke_m_ && offset_A_ == 0.0 && angle(floating_axis_, tool_z(pose_of(wo_))) <= kTurnedRad)
+    upright_stroke_m_ = floating_stroke_m_;
 }
 
 void Toucher::arm() {
   ContactWatchProgram w;
-  w.hold_current_A = static_cast<float>(rig_.watch_current_A);
+  w.hold_current_A = static_cast<float>(rig_.watch_current_A + offset_A_);
   w.threshold_counts = static_cast<std::uint32_t>(std::lround(rig_.contact_threshold_m / kCountM));
   w.timeout_s = 0.0f;
   probe_.load(w);
@@ -199,6 +214,14 @@ Pose Toucher::tcp_along(const double point[3], const double normal[3], double di
   return p;
 }
 
+void Toucher::turn_upright() {
+  robot_.set_tool(rig_.tool_id, rig_.tool_tcp);  // the pose is the probe's TCP's
+  Pose p = robot_.pose();
+  const Pose wo = pose_of(wo_);
+  p.a_rad = wo.a_rad, p.b_rad = wo.b_rad, p.c_rad = wo.c_rad;
+  robot_.move_lin(p, rig_.travel_speed_m_per_s);
+}
+
 void Toucher::rise_to(double clearance) {
   const Pose now = robot_.pose();
   const double b[3] = {now.x_m, now.y_m, now.z_m};
@@ -228,6 +251,26 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
   Touch t;
   prepare();
   robot_.move_lin(start, rig_.travel_speed_m_per_s);
+  // a tool turned since the coil was floated floats elsewhere (its weight along the axis is
+  // another): take the floating position again where this approach starts
+  const std::array<double, 3> axis = tool_z(start);
+  if (angle(axis, floating_axis_) > kTurnedRad) {
+    wait_device(kSettleS);
+    floating_stroke_m_ = stroke_now_m();
+    floating_axis_ = axis;
+    if (compensate_tilt_ && upright_stroke_m_) {
+      // float where the upright coil floats: the current makes up the weight along the axis
+      // that the turn took away or added, k_v (s_upright - s) / K_f
+      const analysis::IndentationParams k;
+      const double more = k.spring_N_per_m * (*upright_stroke_m_ - floating_stroke_m_) / k.force_constant_N_per_A;
+      if (std::abs(more) > kCurrentStepA) {
+        offset_A_ += more;
+        release_coil();
+        wait_device(kSettleS);  // the coil back on its rear stop
+        prepare();
+      }
+    }
+  }
   const double pushed = floating_stroke_m_ - stroke_now_m();
   if (std::abs(pushed) >= rig_.contact_threshold_m)
     throw ConfigError("the tip already touches something at the start of the approach (the coil is " +

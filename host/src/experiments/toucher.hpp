@@ -2,6 +2,7 @@
 // The guarded-approach touch shared by trace_surface and touch_off (trace.hpp has the sequence).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 
@@ -40,7 +41,8 @@ class Toucher {
   Touch touch(const Pose& start, double travel_m,
               std::optional<double> approach_speed_m_per_s = std::nullopt);
   /// The floating coil's stroke position (m) measured by prepare(): where the tip is ahead of
-  /// the TCP (the tip apex at stroke origin) while no contact pushes it.
+  /// the TCP (the tip apex at stroke origin) while no contact pushes it; measured again by a
+  /// touch whose start turns the tool (the coil's weight along its axis changes with the tilt).
   double floating_stroke_m() const { return floating_stroke_m_; }
   /// Moves along the tool's -z by `distance` at the travel speed.
   void back_off(double distance_m);
@@ -61,6 +63,18 @@ class Toucher {
   /// frame, into the specimen), the tool's z along that normal and the work object's A kept
   /// (orientation_along): the start of an approach normal to the surface (map --align normal).
   Pose tcp_along(const double point_m[3], const double normal[3], double distance_m) const;
+  /// Turns the tool to the work object's orientation where it is (before a tilted map's first
+  /// prepare(): the upright floating position is the reference of compensate_tilt).
+  void turn_upright();
+  /// A turned tool's coil carries another part of its weight along the axis, so at the same
+  /// current it floats elsewhere (3.4 mm back at 25 degrees in palp-sim) and works at another
+  /// stroke position, where K_f(s) differs. With this on, a touch whose start turns the tool
+  /// floats the coil again with the current that puts it where it floats upright (tool along the
+  /// work object's z, measured by the first prepare() so): current_offset_A() more, from the
+  /// floating positions, k_v (s_upright - s) / K_f. Off by default (trace, touch-off).
+  void compensate_tilt(bool on) { compensate_tilt_ = on; }
+  /// What the tilt compensation adds to the watch current now (A); the ramp adds it too.
+  double current_offset_A() const { return offset_A_; }
   /// Straight up along the work object's -z until the TCP is `clearance` above its z = 0,
   /// keeping the tool's orientation (a tilted tool rises tilted).
   void rise_to(double clearance_m);
@@ -83,6 +97,10 @@ class Toucher {
   std::function<bool()> cancelled_;
   bool floating_ = false;
   double floating_stroke_m_ = 0.0;
+  std::array<double, 3> floating_axis_{0, 0, 1};  // the tool's z (base) where it was measured
+  bool compensate_tilt_ = false;
+  double offset_A_ = 0.0;                         // added to the watch current (the tilt's)
+  std::optional<double> upright_stroke_m_;        // floating with the work object's z, no offset
   proto::rb::Transform wo_, wo_inv_;  // the work object (identity until set)
 };
 

@@ -12,6 +12,7 @@
 #include "experiments/toucher.hpp"
 #include "palp/error.hpp"
 #include "palp/map.hpp"
+#include "palp/plant/phantom.hpp"
 #include "palp/probe.hpp"
 #include "palp/protocol/robot_bridge/pose.hpp"
 #include "palp/robot.hpp"
@@ -150,6 +151,7 @@ TEST(MapAlign, TracedNormalsTiltTheToolTenDegreesOnTheTiltedPlaneAndTheMapRecord
     EXPECT_NEAR(back.points[k].tilt_rad, m.points[k].tilt_rad, 1e-12);
     ASSERT_EQ(back.points[k].tool_axis.size(), 3u);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(back.points[k].tool_axis[i], m.points[k].tool_axis[i], 1e-12);
+    EXPECT_NEAR(back.points[k].coil_offset_A, m.points[k].coil_offset_A, 1e-12);
   }
   std::filesystem::remove_all(dir);
   std::filesystem::remove_all(flat_dir);
@@ -253,6 +255,86 @@ TEST(MapAlign, ATraceOfAnotherGridWorkObjectOrSteeperThanAllowedIsRefusedBeforeA
   EXPECT_EQ(after.x_m, before.x_m);
   EXPECT_EQ(after.y_m, before.y_m);
   EXPECT_EQ(after.z_m, before.z_m);
+}
+
+// Issue 24's acceptance on the plant's oblique contact: wedge_25 (a 25 degree top) mapped
+// unaligned and aligned by a trace, against its flat twin wedge_0, on a 3 x 3 subset of stiff
+// points (columns 1, 4, 7 at x = 10, 40, 70 mm, between the shallow channels; rows 1, 4, 7).
+// Aligned, every point's k_fd is the flat one within 3 %; unaligned (a vertical probe on 25
+// degrees: Mindlin's split predicts about 7 % less) every point is off by more.
+TEST(MapAlign, OnTheTwentyFiveDegreeWedgeAlignedMapsRecoverTheFlatStiffnessWithin3PercentAndUnalignedDoNot) {
+  try {
+    palp::plant::load_shipped_phantom("wedge_25");
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << "needs the plant's oblique contact and its wedge phantoms: " << e.what();
+  }
+  auto rig_for = [](const InprocSimulator& sim) {
+    palp::Rig rig = sim_rig(sim);
+    rig.safe_height_m = 26e-3;   // above the wedge's highest point (23.3 mm)
+    rig.max_approach_m = 50e-3;  // down to its lowest (+23.3 mm below z = 0)
+    return rig;
+  };
+  palp::Plan plan = subset_plan();
+  plan.name = "wedge 3 x 3";
+  plan.grid.rows = plan.grid.columns = 3;
+  plan.grid.x0_m = 0.010;
+  plan.grid.pitch_x_m = plan.grid.pitch_y_m = 0.030;
+  const palp::MapOptions o = short_ramp();
+  palp::StiffnessMap flat, unaligned, aligned;
+  {
+    InprocSimulator sim({.phantom = "wedge_0", .robot = true});
+    palp::Probe probe(sim.transport());
+    auto robot = palp::connect_robot(sim.robot_uri());
+    const auto dir = fresh_dir("palp_map_align_wedge_0");
+    flat = palp::map_plan(probe, *robot, rig_for(sim), plan, dir, o);
+    std::filesystem::remove_all(dir);
+  }
+  {
+    InprocSimulator sim({.phantom = "wedge_25", .robot = true});
+    palp::Probe probe(sim.transport());
+    auto robot = palp::connect_robot(sim.robot_uri());
+    const palp::Rig rig = rig_for(sim);
+    const auto dir = fresh_dir("palp_map_align_wedge_25");
+    unaligned = palp::map_plan(probe, *robot, rig, plan, dir, o);
+    std::filesystem::remove_all(dir);
+    const palp::TracedSurface trace = palp::trace_surface(probe, *robot, rig, plan);
+    ASSERT_TRUE(trace.complete && trace.normals_from_grid) << trace.stopped_because;
+    palp::MapOptions a = o;
+    a.align_to_normal = true;
+    a.align_trace = trace;
+    aligned = palp::map_plan(probe, *robot, rig, plan, dir, a);
+    std::filesystem::remove_all(dir);
+  }
+  ASSERT_TRUE(flat.complete) << flat.stopped_because;
+  ASSERT_TRUE(unaligned.complete) << unaligned.stopped_because;
+  ASSERT_TRUE(aligned.complete) << aligned.stopped_because;
+  double worst_aligned = 0, best_unaligned = 1, sum_aligned = 0, sum_unaligned = 0;
+  for (std::size_t k = 0; k < flat.points.size(); ++k) {
+    const palp::MapPoint &f = flat.points[k], &u = unaligned.points[k], &a = aligned.points[k];
+    SCOPED_TRACE("row " + std::to_string(f.row) + ", column " + std::to_string(f.column));
+    ASSERT_TRUE(f.k_fd_N_per_m && u.k_fd_N_per_m && a.k_fd_N_per_m)
+        << f.k_fd_reason << u.k_fd_reason << a.k_fd_reason << a.reason;
+    EXPECT_NEAR(a.tilt_rad / kDeg, 25.0, 0.5);
+    // the coil's weight along the axis falls by m_v g (1 - cos 25 deg) = 0.148 N (the plant's
+    // README): the touch and the ramp make it up with 0.148 N / 2.918 N/A = 51 mA more
+    EXPECT_NEAR(a.coil_offset_A, 0.0507, 0.005);
+    EXPECT_EQ(u.coil_offset_A, 0.0);
+    const double ea = *a.k_fd_N_per_m / *f.k_fd_N_per_m - 1, eu = *u.k_fd_N_per_m / *f.k_fd_N_per_m - 1;
+    EXPECT_LT(std::abs(ea), 0.03);
+    EXPECT_GT(std::abs(eu), 0.03);
+    worst_aligned = std::max(worst_aligned, std::abs(ea));
+    best_unaligned = std::min(best_unaligned, std::abs(eu));
+    sum_aligned += ea, sum_unaligned += eu;
+    std::printf("r%d c%d: k_fd flat %.4f, aligned %.4f (%+.2f %%, tilt %.2f deg), unaligned %.4f (%+.2f %%) N/mm\n",
+                f.row, f.column, *f.k_fd_N_per_m * 1e-3, *a.k_fd_N_per_m * 1e-3, 100 * ea, a.tilt_rad / kDeg,
+                *u.k_fd_N_per_m * 1e-3, 100 * eu);
+  }
+  const double n = static_cast<double>(flat.points.size());
+  std::printf("wedge_25 against wedge_0, 3 x 3: aligned mean %+.2f %% (worst %.2f %%), unaligned mean %+.2f %% "
+              "(least %.2f %%)\n",
+              100 * sum_aligned / n, 100 * worst_aligned, 100 * sum_unaligned / n, 100 * best_unaligned);
+  RecordProperty("aligned_worst_error_pct", std::to_string(100 * worst_aligned));
+  RecordProperty("unaligned_least_error_pct", std::to_string(100 * best_unaligned));
 }
 
 }  // namespace map_align_test
