@@ -127,7 +127,8 @@ json tilt_json(const palp::StiffnessMap& m) {
   }
   for (const palp::MapPoint& p : m.points)
     if (p.surface.ok && p.row >= 1 && p.row <= m.rows && p.column >= 1 && p.column <= m.columns)
-      rows[static_cast<std::size_t>(p.row - 1)][static_cast<std::size_t>(p.column - 1)] = p.tilt_rad * 180 / std::numbers::pi;
+      rows[static_cast<std::size_t>(p.row - 1)][static_cast<std::size_t>(p.column - 1)] =
+          p.tilt_rad * 180 / std::numbers::pi;
   return rows;
 }
 
@@ -140,8 +141,8 @@ void print_tilt(const palp::StiffnessMap& m) {
     by = p.aligned_by;
   }
   if (by == "none" || !(lo <= hi)) return;
-  std::printf("tool along the surface normal (%s): tilt %.1f to %.1f deg\n", by.c_str(), lo * 180 / std::numbers::pi,
-              hi * 180 / std::numbers::pi);
+  std::printf("tool along the surface normal (%s): tilt %.1f to %.1f deg\n", by.c_str(),
+              lo * 180 / std::numbers::pi, hi * 180 / std::numbers::pi);
 }
 
 int map(const Context& ctx, const MapCli& o) {
@@ -308,22 +309,25 @@ void add_map_command(CLI::App& app, Context& ctx) {
                   "the depth the previous point reached); refused beyond the coil's current clamp "
                   "or I2t margin (docs/depth-sensitivity.md)");
   cmd->add_option("--align", o->align,
-                  "Tool axis at each point: none (the work object's z) or normal (the surface normal: "
-                  "from --trace, else a local trace of four touches around the point)")
+                  "Tool axis at each point: none (the work object's z) or normal (the surface "
+                  "normal: from --trace, else a local trace of four touches around the point)")
       ->check(CLI::IsMember({"none", "normal"}))
       ->capture_default_str();
-  cmd->add_option("--trace", o->trace, "With --align normal: trace.json of `palpctl trace` of the same plan")
+  cmd->add_option("--trace", o->trace,
+                  "With --align normal: trace.json of `palpctl trace` of the same plan")
       ->check(CLI::ExistingFile);
   cmd->add_option("--local-trace-mm", o->local_trace_mm,
                   "With --align normal and no --trace: the local trace touches at (x +- d, y +- d)")
       ->check(CLI::Range(0.01, 20.0))
       ->capture_default_str();
-  cmd->add_option("--max-tilt-deg", o->max_tilt_deg, "With --align normal: refuse a normal tilted more")
+  cmd->add_option("--max-tilt-deg", o->max_tilt_deg,
+                  "With --align normal: refuse a normal tilted more")
       ->check(CLI::Range(0.01, 80.0))
       ->capture_default_str();
   cmd->callback([&ctx, o] {
     if (!o->trace.empty() && o->align != "normal")
-      throw CLI::ValidationError("--trace", "gives the normals for --align normal, which is not set");
+      throw CLI::ValidationError("--trace",
+                                 "gives the normals for --align normal, which is not set");
     ctx.action = [&ctx, o] { return map(ctx, *o); };
   });
 

@@ -33,23 +33,32 @@ class PalpctlMapAlign : public ::testing::Test {
     ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
     const unsigned rp = robot_port(sim_.banner());
     ASSERT_NE(rp, 0u) << sim_.banner();
-    dir_ = fs::temp_directory_path() / ("palpctl-map-align-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("palpctl-map-align-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // the work object is palp-sim's phantom frame; the plane is 8.8 mm high at its highest
-    std::ofstream(dir_ / "rig.json") << R"({"format_version": 1, "robot_uri": "modbus://127.0.0.1:)" << rp
-                                     << R"(", "probe_uri": ")" << sim_.uri() << R"(",
+    std::ofstream(dir_ / "rig.json") << R"({"format_version": 1, "robot_uri": "modbus://127.0.0.1:)"
+                                     << rp << R"(", "probe_uri": ")" << sim_.uri() << R"(",
         "tool_tcp_mm_deg": [0, 0, 200, 0, 0, 0], "safe_height_mm": 12,
         "work_object": {"name": "phantom", "pose_mm_deg": [600, 0, 300, 0, 0, 180]}})";
-    std::ofstream(dir_ / "plan.json") << R"({"format_version": 1, "name": "one point", "work_object": "phantom",
+    std::ofstream(dir_ / "plan.json")
+        << R"({"format_version": 1, "name": "one point", "work_object": "phantom",
         "grid": {"rows": 1, "columns": 1, "origin_mm": [30, 35], "pitch_mm": [10, 10]},
         "contact_E_star_Pa": 3.3e6})";
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::vector<std::string> map_args(const std::string& out) const {
-    return {"map", "--rig", (dir_ / "rig.json").string(), "--plan", (dir_ / "plan.json").string(),
-            "--out-dir", (dir_ / out).string(), "--reps", "1"};
+    return {"map",
+            "--rig",
+            (dir_ / "rig.json").string(),
+            "--plan",
+            (dir_ / "plan.json").string(),
+            "--out-dir",
+            (dir_ / out).string(),
+            "--reps",
+            "1"};
   }
   ProcessResult run(std::vector<std::string> args, double timeout_s = 180) {
     EXPECT_TRUE(sim_.wait_no_client()) << "palp-sim still holds the previous client";
@@ -82,7 +91,8 @@ TEST_F(PalpctlMapAlign, ATraceOfAnotherGridExits2BeforeAnythingMovesAndWritesNoM
   for (int k = 0; k < 4; ++k) {  // touched along the phantom's z (base -z) 10 mm apart
     palp::TracePoint p;
     p.row = k / 2 + 1, p.column = k % 2 + 1, p.ok = true;
-    p.tcp_at_rest = palp::Pose{0.600 + 0.010 * p.column, -0.010 * p.row, 0.330, 0, 0, std::numbers::pi};
+    p.tcp_at_rest =
+        palp::Pose{0.600 + 0.010 * p.column, -0.010 * p.row, 0.330, 0, 0, std::numbers::pi};
     p.stroke_at_rest_m = 0.030;
     t.points.push_back(p);
   }
@@ -92,8 +102,9 @@ TEST_F(PalpctlMapAlign, ATraceOfAnotherGridExits2BeforeAnythingMovesAndWritesNoM
   args.insert(args.end(), {"--align", "normal", "--trace", (dir_ / "trace.json").string()});
   const auto r = run(args);
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("the alignment's trace is a 2 x 2 grid, the plan 1 x 1: trace the plan to map"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("the alignment's trace is a 2 x 2 grid, the plan 1 x 1: trace the plan to map"),
+      std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "m" / "map.json"));
 }

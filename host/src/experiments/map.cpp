@@ -252,7 +252,9 @@ class Mapper {
     p.tool_axis = aim.tool_axis;
     Touch t;
     t.reason = aim.reason;
-    if (aim.ok) t = toucher_.touch(aim.start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
+    if (aim.ok)
+      t = toucher_.touch(aim.start, rig_.safe_height_m + rig_.max_approach_m,
+                         plan_.approach_speed_m_per_s);
     p.surface = t.at_rest;
     p.surface.row = row;
     p.surface.column = column;
@@ -269,7 +271,8 @@ class Mapper {
     // a tilted coil floats and ramps with the current that makes up its weight along the axis
     p.coil_offset_A = toucher_.current_offset_A();
     IndentationRun run =
-        indent(probe_, detail::with_current_offset(point_settings(), p.coil_offset_A), {}, o_.cancelled);
+    IndentationRun run = indent(
+        probe_, detail::with_current_offset(point_settings(), p.coil_offset_A), {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
     if (const auto top = ramp_top_of(run)) reached_depth_m_ = top->depth_m;
     p.result_dir = point_dir(row, column);

@@ -46,11 +46,13 @@ void check_trace(const TracedSurface& t, const Rig& rig, const Plan& plan, doubl
                       " grid, the plan " + std::to_string(plan.grid.rows) + " x " +
                       std::to_string(plan.grid.columns) + ": trace the plan to map");
   if (!t.complete || !t.normals_from_grid)
-    throw ConfigError(what + " has no normals from a whole grid (" +
-                      (t.complete ? std::string("a point without contact") : "stopped: " + t.stopped_because) +
-                      "): finish or repeat the trace");
+    throw ConfigError(
+        what + " has no normals from a whole grid (" +
+        (t.complete ? std::string("a point without contact") : "stopped: " + t.stopped_because) +
+        "): finish or repeat the trace");
   const Pose& w = rig.work_object->pose;
-  const double moved = std::hypot(t.work_object.x_m - w.x_m, t.work_object.y_m - w.y_m, t.work_object.z_m - w.z_m);
+  const double moved =
+      std::hypot(t.work_object.x_m - w.x_m, t.work_object.y_m - w.y_m, t.work_object.z_m - w.z_m);
   const double turned = angle_between(t.work_object, w);
   if (moved > kSameOriginM || turned > kSameAngleRad)
     throw ConfigError(what + " was made in another pose of the work object (" +
@@ -65,8 +67,8 @@ void check_trace(const TracedSurface& t, const Rig& rig, const Plan& plan, doubl
                         ": a trace of another plan");
     if (tilt_of(p.normal) > max_tilt)
       throw ConfigError(what + "'s " + at(p.row, p.column) + ": the normal is tilted " +
-                        fmt("%.1f deg, more than the maximum tilt %.1f deg", tilt_of(p.normal) * kDegPerRad,
-                            max_tilt * kDegPerRad));
+                        fmt("%.1f deg, more than the maximum tilt %.1f deg",
+                            tilt_of(p.normal) * kDegPerRad, max_tilt * kDegPerRad));
   }
 }
 
@@ -89,8 +91,8 @@ void MapAligner::check() const {
     throw ConfigError("map options: max_tilt_rad is " + fmt("%g deg", o.max_tilt_rad * kDegPerRad) +
                       ", not in (0, 80] deg");
   if (!(o.local_trace_offset_m > 0 && o.local_trace_offset_m <= kMaxLocalOffsetM))
-    throw ConfigError("map options: local_trace_offset_m is " + fmt("%g mm", o.local_trace_offset_m * 1e3) +
-                      ", not in (0, 20] mm");
+    throw ConfigError("map options: local_trace_offset_m is " +
+                      fmt("%g mm", o.local_trace_offset_m * 1e3) + ", not in (0, 20] mm");
   if (o.align_trace) check_trace(*o.align_trace, rig_, plan_, o.max_tilt_rad);
 }
 
@@ -103,7 +105,9 @@ MapAim MapAligner::aim(int row, int column, double clearance) {
   }
   std::optional<Plane> plane;
   if (o_.align_trace) {
-    const TracePoint& p = o_.align_trace->points[static_cast<std::size_t>((row - 1) * plan_.grid.columns + column - 1)];
+    const TracePoint& p =
+        o_.align_trace
+            ->points[static_cast<std::size_t>((row - 1) * plan_.grid.columns + column - 1)];
     plane = Plane{{p.x_m, p.y_m, p.z_m}, {p.normal[0], p.normal[1], p.normal[2]}};
     a.aligned_by = "trace";
   } else {
@@ -120,9 +124,9 @@ MapAim MapAligner::aim(int row, int column, double clearance) {
   if (a.tilt_rad > o_.max_tilt_rad) {
     toucher_.release_coil();  // as after a touch without contact: the next point floats it again
     a.ok = false;
-    a.reason = "the local normal is tilted " +
-               fmt("%.1f deg, more than the maximum tilt %.1f deg", a.tilt_rad * kDegPerRad,
-                   o_.max_tilt_rad * kDegPerRad);
+    a.reason =
+        "the local normal is tilted " + fmt("%.1f deg, more than the maximum tilt %.1f deg",
+                                            a.tilt_rad * kDegPerRad, o_.max_tilt_rad * kDegPerRad);
     return a;
   }
   // where the tangent plane meets the plan's (x, y): the touch lands there along the normal
@@ -143,11 +147,13 @@ std::optional<MapAligner::Plane> MapAligner::local_plane(double x, double y, dou
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c) {
       const double xt = x + (c == 0 ? -d : d), yt = y + (r == 0 ? -d : d);
-      Touch t = toucher_.touch(toucher_.tcp_at(xt, yt, -clearance), rig_.safe_height_m + rig_.max_approach_m,
-                               plan_.approach_speed_m_per_s);
+      Touch t =
+          toucher_.touch(toucher_.tcp_at(xt, yt, -clearance),
+                         rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
       toucher_.rise_to(clearance);
       if (!t.ok) {
-        why = "the local trace's touch at " + fmt("(%.3f, %.3f) mm: ", xt * 1e3, yt * 1e3) + t.reason;
+        why =
+            "the local trace's touch at " + fmt("(%.3f, %.3f) mm: ", xt * 1e3, yt * 1e3) + t.reason;
         return std::nullopt;
       }
       t.at_rest.row = r + 1;

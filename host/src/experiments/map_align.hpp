@@ -43,7 +43,7 @@ class MapAligner {
 
  private:
   struct Plane {
-    double point[3], normal[3];     // work-object frame; the normal unit, into the specimen
+    double point[3], normal[3];  // work-object frame; the normal unit, into the specimen
   };
   std::optional<Plane> local_plane(double x, double y, double clearance, std::string& why);
 

@@ -62,8 +62,8 @@ Pose pose_of(const rb::Transform& t) {
 
 Pose orientation_along(const double n[3], double a, double b_near, double c_near) {
   // v = Rz(-A) n = (sin B cos C, -sin C, cos B cos C)
-  const double v[3] = {std::cos(a) * n[0] + std::sin(a) * n[1], -std::sin(a) * n[0] + std::cos(a) * n[1],
-                       n[2]};
+  const double v[3] = {std::cos(a) * n[0] + std::sin(a) * n[1],
+                       -std::sin(a) * n[0] + std::cos(a) * n[1], n[2]};
   const double cos_c = std::sqrt(std::max(0.0, 1.0 - v[1] * v[1]));
   if (cos_c < 1e-6)
     throw ConfigError("a tool axis perpendicular to the base's z turned by A has no B (cos C = 0): "
@@ -109,12 +109,14 @@ void Toucher::prepare() {
   Params p = probe_.params();
   p.contact_output = proto::ContactOutputMode::active_high;
   probe_.set_params(p);
-  experiment::float_coil(probe_, rig_.watch_current_A + offset_A_, "is watch_current_A above the float current?");
+  experiment::float_coil(probe_, rig_.watch_current_A + offset_A_,
+                         "is watch_current_A above the float current?");
   wait_device(kSettleS);
   floating_stroke_m_ = stroke_now_m();
   floating_axis_ = tool_z(robot_.pose());
   floating_ = true;
-  if (!upright_stroke_m_ && offset_A_ == 0.0 && angle(floating_axis_, tool_z(pose_of(wo_))) <= kTurnedRad)
+  if (!upright_stroke_m_ && offset_A_ == 0.0 &&
+      angle(floating_axis_, tool_z(pose_of(wo_))) <= kTurnedRad)
     upright_stroke_m_ = floating_stroke_m_;
 }
 
@@ -262,9 +264,11 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
     // float where the upright coil floats: the current makes up the weight along the axis that
     // the turn took away or added, k_v (s_upright - s) / K_f; K_f(s) is not flat behind the
     // float (a coil floated back is pushed harder than that says), so again until it is there
-    for (int pass = 0; compensate_tilt_ && upright_stroke_m_ && pass < kCompensationPasses; ++pass) {
+    for (int pass = 0; compensate_tilt_ && upright_stroke_m_ && pass < kCompensationPasses;
+         ++pass) {
       const analysis::IndentationParams k;
-      const double more = k.spring_N_per_m * (*upright_stroke_m_ - floating_stroke_m_) / k.force_constant_N_per_A;
+      const double more = k.spring_N_per_m * (*upright_stroke_m_ - floating_stroke_m_) /
+                          k.force_constant_N_per_A;
       if (std::abs(more) <= kCurrentStepA) break;
       offset_A_ += more;
       release_coil();

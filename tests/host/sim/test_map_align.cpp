@@ -78,13 +78,15 @@ TEST(MapAlign, OrientationAlongPutsTheToolZOnTheAxisKeepsAAndIsTheNominalForTheN
         for (double az : azimuths) {
           // an axis tilted t from the nominal tool z (A = a, B = 0, C = c0)
           const rb::Rotation nominal = rb::rotation_from_abc(a, 0, c0);
-          const double local[3] = {std::sin(t) * std::cos(az), std::sin(t) * std::sin(az), std::cos(t)};
+          const double local[3] = {std::sin(t) * std::cos(az), std::sin(t) * std::sin(az),
+                                   std::cos(t)};
           double axis[3];
           rb::rotate(nominal, local, axis);
           const palp::Pose p = palp::detail::orientation_along(axis, a, 0, c0);
           EXPECT_EQ(p.a_rad, a);
           const rb::Rotation r = rb::rotation_from_abc(p.a_rad, p.b_rad, p.c_rad);
-          for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.m[i][2], axis[i], 1e-12) << t / kDeg << " " << az / kDeg;
+          for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(r.m[i][2], axis[i], 1e-12) << t / kDeg << " " << az / kDeg;
           if (t == 0.0) {
             EXPECT_NEAR(std::remainder(p.b_rad, 2 * std::numbers::pi), 0.0, 1e-12);
             EXPECT_NEAR(std::remainder(p.c_rad - c0, 2 * std::numbers::pi), 0.0, 1e-12);
@@ -141,8 +143,9 @@ TEST(MapAlign, TracedNormalsTiltTheToolTenDegreesOnTheTiltedPlaneAndTheMapRecord
     const double ratio = *p.k_fd_N_per_m / *q.k_fd_N_per_m;
     EXPECT_GT(ratio, 1.0);
     EXPECT_LT(ratio, 1.03);
-    std::printf("r%d c%d: tilt %.2f deg, k_fd aligned %.4f, unaligned %.4f N/mm (%+.2f %%)\n", p.row, p.column,
-                p.tilt_rad / kDeg, *p.k_fd_N_per_m * 1e-3, *q.k_fd_N_per_m * 1e-3, 100 * (ratio - 1));
+    std::printf("r%d c%d: tilt %.2f deg, k_fd aligned %.4f, unaligned %.4f N/mm (%+.2f %%)\n",
+                p.row, p.column, p.tilt_rad / kDeg, *p.k_fd_N_per_m * 1e-3, *q.k_fd_N_per_m * 1e-3,
+                100 * (ratio - 1));
   }
   // the map's own surface (from the aligned touches) has the plane's normals
   for (const palp::MapPoint& p : m.points) EXPECT_NEAR(p.surface.tilt_rad / kDeg, 10.0, 0.5);
@@ -153,7 +156,8 @@ TEST(MapAlign, TracedNormalsTiltTheToolTenDegreesOnTheTiltedPlaneAndTheMapRecord
     EXPECT_EQ(back.points[k].aligned_by, "trace");
     EXPECT_NEAR(back.points[k].tilt_rad, m.points[k].tilt_rad, 1e-12);
     ASSERT_EQ(back.points[k].tool_axis.size(), 3u);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(back.points[k].tool_axis[i], m.points[k].tool_axis[i], 1e-12);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(back.points[k].tool_axis[i], m.points[k].tool_axis[i], 1e-12);
     EXPECT_NEAR(back.points[k].coil_offset_A, m.points[k].coil_offset_A, 1e-12);
   }
   std::filesystem::remove_all(dir);
@@ -228,7 +232,8 @@ TEST(MapAlign, ATraceOfAnotherGridWorkObjectOrSteeperThanAllowedIsRefusedBeforeA
     }
     return std::string("not refused");
   };
-  EXPECT_EQ(refused(t, 30, false), "map options: a trace to align with, but align_to_normal is off");
+  EXPECT_EQ(refused(t, 30, false),
+            "map options: a trace to align with, but align_to_normal is off");
   palp::TracedSurface wrong = t;
   wrong.columns = 3;
   EXPECT_EQ(refused(wrong, 30),
@@ -236,19 +241,22 @@ TEST(MapAlign, ATraceOfAnotherGridWorkObjectOrSteeperThanAllowedIsRefusedBeforeA
   wrong = t;
   wrong.complete = false;
   wrong.stopped_because = "cancelled";
-  EXPECT_EQ(refused(wrong, 30),
-            "the alignment's trace has no normals from a whole grid (stopped: cancelled): finish or "
-            "repeat the trace");
+  EXPECT_EQ(
+      refused(wrong, 30),
+      "the alignment's trace has no normals from a whole grid (stopped: cancelled): finish or "
+      "repeat the trace");
   wrong = t;
   wrong.work_object.z_m += 1e-3;
-  EXPECT_EQ(refused(wrong, 30),
-            "the alignment's trace was made in another pose of the work object (1.000 mm, 0.000 deg "
-            "from the rig's): trace it again after the touch-off");
+  EXPECT_EQ(
+      refused(wrong, 30),
+      "the alignment's trace was made in another pose of the work object (1.000 mm, 0.000 deg "
+      "from the rig's): trace it again after the touch-off");
   wrong = t;
   wrong.points[3].apex_x_m += 5e-3;
-  EXPECT_EQ(refused(wrong, 30),
-            "the alignment's trace's point (row 2, column 2) was touched at (75.000, 35.000) mm, the "
-            "plan's is at (70.000, 35.000) mm: a trace of another plan");
+  EXPECT_EQ(
+      refused(wrong, 30),
+      "the alignment's trace's point (row 2, column 2) was touched at (75.000, 35.000) mm, the "
+      "plan's is at (70.000, 35.000) mm: a trace of another plan");
   EXPECT_EQ(refused(t, 8),
             "the alignment's trace's point (row 1, column 1): the normal is tilted 10.0 deg, more "
             "than the maximum tilt 8.0 deg");
@@ -265,7 +273,8 @@ TEST(MapAlign, ATraceOfAnotherGridWorkObjectOrSteeperThanAllowedIsRefusedBeforeA
 // points (columns 1, 4, 7 at x = 10, 40, 70 mm, between the shallow channels; rows 1, 4, 7).
 // Aligned, every point's k_fd is the flat one within 3 %; unaligned (a vertical probe on 25
 // degrees: Mindlin's split predicts about 7 % less) every point is off by more.
-TEST(MapAlign, OnTheTwentyFiveDegreeWedgeAlignedMapsRecoverTheFlatStiffnessWithin3PercentAndUnalignedDoNot) {
+TEST(MapAlign,
+     OnTheTwentyFiveDegreeWedgeAlignedMapsRecoverTheFlatStiffnessWithin3PercentAndUnalignedDoNot) {
   if (palp::sim::test::kSanitized) GTEST_SKIP() << "27 indentations: the release build runs it";
   try {
     palp::plant::load_shipped_phantom("wedge_25");
@@ -323,21 +332,26 @@ TEST(MapAlign, OnTheTwentyFiveDegreeWedgeAlignedMapsRecoverTheFlatStiffnessWithi
     // README): the touch and the ramp make it up with 0.148 N / 2.918 N/A = 51 mA more
     EXPECT_NEAR(a.coil_offset_A, 0.0507, 0.005);
     EXPECT_EQ(u.coil_offset_A, 0.0);
-    const double ea = *a.k_fd_N_per_m / *f.k_fd_N_per_m - 1, eu = *u.k_fd_N_per_m / *f.k_fd_N_per_m - 1;
+    const double ea = *a.k_fd_N_per_m / *f.k_fd_N_per_m - 1,
+                 eu = *u.k_fd_N_per_m / *f.k_fd_N_per_m - 1;
     EXPECT_LT(std::abs(ea), 0.03);
     EXPECT_GT(std::abs(eu), 0.03);
     worst_aligned = std::max(worst_aligned, std::abs(ea));
     best_unaligned = std::min(best_unaligned, std::abs(eu));
     sum_aligned += ea, sum_unaligned += eu;
-    std::printf("r%d c%d: k_fd flat %.4f, aligned %.4f (%+.2f %%, tilt %.2f deg, coil +%.1f mA), unaligned %.4f "
-                "(%+.2f %%) N/mm\n",
-                f.row, f.column, *f.k_fd_N_per_m * 1e-3, *a.k_fd_N_per_m * 1e-3, 100 * ea, a.tilt_rad / kDeg,
-                a.coil_offset_A * 1e3, *u.k_fd_N_per_m * 1e-3, 100 * eu);
+    std::printf(
+        "r%d c%d: k_fd flat %.4f, aligned %.4f (%+.2f %%, tilt %.2f deg, coil +%.1f mA), unaligned "
+        "%.4f "
+        "(%+.2f %%) N/mm\n",
+        f.row, f.column, *f.k_fd_N_per_m * 1e-3, *a.k_fd_N_per_m * 1e-3, 100 * ea,
+        a.tilt_rad / kDeg, a.coil_offset_A * 1e3, *u.k_fd_N_per_m * 1e-3, 100 * eu);
   }
   const double n = static_cast<double>(flat.points.size());
-  std::printf("wedge_25 against wedge_0, 3 x 3: aligned mean %+.2f %% (worst %.2f %%), unaligned mean %+.2f %% "
-              "(least %.2f %%)\n",
-              100 * sum_aligned / n, 100 * worst_aligned, 100 * sum_unaligned / n, 100 * best_unaligned);
+  std::printf(
+      "wedge_25 against wedge_0, 3 x 3: aligned mean %+.2f %% (worst %.2f %%), unaligned mean "
+      "%+.2f %% "
+      "(least %.2f %%)\n",
+      100 * sum_aligned / n, 100 * worst_aligned, 100 * sum_unaligned / n, 100 * best_unaligned);
   RecordProperty("aligned_worst_error_pct", std::to_string(100 * worst_aligned));
   RecordProperty("unaligned_least_error_pct", std::to_string(100 * best_unaligned));
 }
