@@ -270,7 +270,6 @@ class Mapper {
     toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
     // a tilted coil floats and ramps with the current that makes up its weight along the axis
     p.coil_offset_A = toucher_.current_offset_A();
-    IndentationRun run =
     IndentationRun run = indent(
         probe_, detail::with_current_offset(point_settings(), p.coil_offset_A), {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
