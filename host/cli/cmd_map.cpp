@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // palpctl map: the stiffness map of a plan (touch, indent, retract at every point), resumable;
 // palpctl analyze map: a saved map's stiffness grid and the soft and stiff lines in it.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -8,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <iostream>
+#include <numbers>
 #include <optional>
 
 #include "common.hpp"
@@ -20,6 +22,7 @@
 #include "palp/map.hpp"
 #include "palp/result.hpp"
 #include "palp/robot.hpp"
+#include "palp/trace.hpp"
 
 namespace palpctl {
 
@@ -36,6 +39,9 @@ struct MapCli {
   double threshold = 0.1;
   std::optional<double> max_force_N;  // depth sensitivity: the ramp's top object force
   MapDynamicCli dynamic;           // --dynamic and its settings
+  // alignment: --align, --trace, --local-trace-mm, --max-tilt-deg
+  std::string align = "none", trace;
+  double local_trace_mm = 2.0, max_tilt_deg = 30.0;
 };
 
 json analysis_json(const palp::MapAnalysis& a) {
@@ -113,6 +119,34 @@ void print_adaptive(const palp::StiffnessMap& m) {
       m.adaptive_ended.empty() ? "not yet" : m.adaptive_ended.c_str());
 }
 
+// the tool's tilt used at each point (deg; null where not touched), row-major like the analysis
+json tilt_json(const palp::StiffnessMap& m) {
+  json rows = json::array();
+  for (int r = 0; r < m.rows; ++r) {
+    json row = json::array();
+    for (int c = 0; c < m.columns; ++c) row.push_back(nullptr);
+    rows.push_back(row);
+  }
+  for (const palp::MapPoint& p : m.points)
+    if (p.surface.ok && p.row >= 1 && p.row <= m.rows && p.column >= 1 && p.column <= m.columns)
+      rows[static_cast<std::size_t>(p.row - 1)][static_cast<std::size_t>(p.column - 1)] =
+          p.tilt_rad * 180 / std::numbers::pi;
+  return rows;
+}
+
+void print_tilt(const palp::StiffnessMap& m) {
+  double lo = INFINITY, hi = -INFINITY;
+  std::string by = "none";
+  for (const palp::MapPoint& p : m.points) {
+    if (!p.surface.ok) continue;
+    lo = std::min(lo, p.tilt_rad), hi = std::max(hi, p.tilt_rad);
+    by = p.aligned_by;
+  }
+  if (by == "none" || !(lo <= hi)) return;
+  std::printf("tool along the surface normal (%s): tilt %.1f to %.1f deg\n", by.c_str(),
+              lo * 180 / std::numbers::pi, hi * 180 / std::numbers::pi);
+}
+
 int map(const Context& ctx, const MapCli& o) {
   const palp::Rig rig = palp::load_rig(o.rig);
   const palp::Plan plan = palp::load_plan(o.plan);
@@ -127,6 +161,10 @@ int map(const Context& ctx, const MapCli& o) {
   }
   options.max_force_N = o.max_force_N;
   options.dynamic = map_dynamic_options(o.dynamic, options.settings);
+  options.align_to_normal = o.align == "normal";
+  if (!o.trace.empty()) options.align_trace = palp::load_trace(o.trace);
+  options.local_trace_offset_m = o.local_trace_mm * 1e-3;
+  options.max_tilt_rad = o.max_tilt_deg * std::numbers::pi / 180.0;
   palp::Probe probe = ctx.connect(rig.probe_uri);
   if (o.resume) recover_for_resume(probe);
   auto robot = palp::connect_robot(rig.robot_uri);
@@ -146,12 +184,14 @@ int map(const Context& ctx, const MapCli& o) {
   if (m.adaptive) j["adaptive"] = adaptive_json(m);
   j["analysis"] = analysis_json(a);
   if (json d = map_dynamic_json(m); !d.is_null()) j["analysis"]["dynamic"] = std::move(d);
+  j["tilt_deg"] = tilt_json(m);
   if (ctx.json)
     print_json(j);
   else {
     print_map(m, a);
     if (m.adaptive) print_adaptive(m);
     print_map_dynamic(m);
+    print_tilt(m);
     std::printf("results in %s (map.json, points/r<row>_c<column>/)\n", o.out_dir.c_str());
   }
   if (!m.complete) {
@@ -282,7 +322,28 @@ void add_map_command(CLI::App& app, Context& ctx) {
                   "the depth the previous point reached); refused beyond the coil's current clamp "
                   "or I2t margin (docs/depth-sensitivity.md)");
   add_map_dynamic_options(cmd, o->dynamic);
-  cmd->callback([&ctx, o] { ctx.action = [&ctx, o] { return map(ctx, *o); }; });
+  cmd->add_option("--align", o->align,
+                  "Tool axis at each point: none (the work object's z) or normal (the surface "
+                  "normal: from --trace, else a local trace of four touches around the point)")
+      ->check(CLI::IsMember({"none", "normal"}))
+      ->capture_default_str();
+  cmd->add_option("--trace", o->trace,
+                  "With --align normal: trace.json of `palpctl trace` of the same plan")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--local-trace-mm", o->local_trace_mm,
+                  "With --align normal and no --trace: the local trace touches at (x +- d, y +- d)")
+      ->check(CLI::Range(0.01, 20.0))
+      ->capture_default_str();
+  cmd->add_option("--max-tilt-deg", o->max_tilt_deg,
+                  "With --align normal: refuse a normal tilted more")
+      ->check(CLI::Range(0.01, 80.0))
+      ->capture_default_str();
+  cmd->callback([&ctx, o] {
+    if (!o->trace.empty() && o->align != "normal")
+      throw CLI::ValidationError("--trace",
+                                 "gives the normals for --align normal, which is not set");
+    ctx.action = [&ctx, o] { return map(ctx, *o); };
+  });
 
 }
 

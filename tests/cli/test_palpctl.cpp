@@ -59,7 +59,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--rig", "--plan", "--out-dir", "--resume", "--name", "--contrast",
       "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format",
       "--plot", "--port", "--bind", "--allow-remote", "--verbose",
-      "--adaptive", "--max-points", "--threshold"};  // map --adaptive: switch, count, fraction
+      "--adaptive", "--max-points", "--threshold",  // map --adaptive: switch, count, fraction
+      "--align", "--trace"};  // map --align: a choice, a file
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},

@@ -52,6 +52,14 @@ struct MapPoint {
   // dynamic (map_dynamic.hpp): the identification after the ramp, when the map is dynamic
   std::string dynamic_dir;             ///< "points/r1_c1_dynamic"; empty when not identified
   DynamicPoint dynamic;
+  // alignment (MapOptions::align_to_normal): the tool's axis at this point's touch and ramp
+  std::string aligned_by = "none";     ///< "none" (the work object's z), "trace" or "local trace"
+  double tilt_rad = 0;                 ///< the tool's z from the work object's z, as used
+  std::vector<double> tool_axis;       ///< aligned: the tool's z (unit, work-object frame)
+  /// Aligned: the current added to the touch's and the ramp's (and the analysis' I_c and I_0) so
+  /// that the tilted coil floats and works where it does upright (its weight along the axis
+  /// changes with the tilt; K_f changes with the stroke position): k_v (s_upright - s) / K_f.
+  double coil_offset_A = 0;
 };
 
 struct StiffnessMap {
@@ -95,6 +103,18 @@ struct MapOptions {
   std::optional<double> max_force_N;
   // dynamic (map_dynamic.hpp): identify the contact at every point after the ramp
   MapDynamicOptions dynamic;
+  // alignment (issue 24): at each point the tool's z along the surface normal, started above the
+  // point's tangent plane along that normal, so the guarded approach, the ramp and the back-off
+  // all run normal to the surface (docs/normal-aligned-maps.md)
+  bool align_to_normal = false;
+  /// The normals to align with: a trace of the same plan in the same work object (trace_surface,
+  /// complete, normals from its grid). None: a local trace at each point, four touches along the
+  /// work object's z at (x +- d, y +- d), d = local_trace_offset_m, their tangent plane.
+  std::optional<TracedSurface> align_trace;
+  double local_trace_offset_m = 2e-3;
+  /// A normal tilted more from the work object's z is refused: ConfigError before anything moves
+  /// for a trace's, the point's reason (not indented) for a local trace's.
+  double max_tilt_rad = 0.5235987755982988;  // 30 deg
 };
 
 /// Maps plan's grid into `dir` (created; ConfigError, before anything moves, if it holds a map and

@@ -8,6 +8,7 @@
 
 #include "palp/force_limit.hpp"
 #include "palp/result.hpp"
+#include "map_align.hpp"
 #include "toucher.hpp"
 #include "format/field_table.hpp"
 #include "map_dynamic_step.hpp"
@@ -34,6 +35,11 @@ const Field<MapPoint> kMapPointFields[] = {
     {"delta0_mm", &MapPoint::delta0_m, format::kMm, Need::optional},
     {"k_tangent_N_per_mm", &MapPoint::k_tangent_N_per_m, format::kNPerMm, Need::optional},
     {"result_dir", &MapPoint::result_dir, 1.0, Need::optional},
+    // alignment (docs/result-format.md "Maps")
+    {"align", &MapPoint::aligned_by, 1.0, Need::optional},
+    {"tilt_deg", &MapPoint::tilt_rad, format::kDeg, Need::optional},
+    {"tool_axis", &MapPoint::tool_axis, 1.0, Need::optional},
+    {"coil_offset_A", &MapPoint::coil_offset_A, 1.0, Need::optional},
 };
 
 const Field<StiffnessMap> kMapFields[] = {
@@ -112,6 +118,7 @@ class Mapper {
          const MapOptions& o)
       : probe_(probe), robot_(robot), rig_(touch_rig(rig, o.settings)), plan_(plan), dir_(dir), o_(o),
         toucher_(probe, robot, rig_, o.cancelled),
+        aligner_(toucher_, rig_, plan, o),
         dynamic_(o.dynamic.enabled
                      ? std::optional<IdentificationSettings>(
                            o.dynamic.settings.value_or(map_dynamic_settings(o.settings)))
@@ -127,6 +134,7 @@ class Mapper {
     if (o.max_force_N) check_max_force(o.settings, *o.max_force_N, CoilLimits::of(probe.params()));
     if (dynamic_) detail::check_dynamic_settings(*dynamic_, o.settings);
     toucher_.set_work_object(rig.work_object->pose);
+    aligner_.check();
   }
 
   StiffnessMap run() {
@@ -180,6 +188,10 @@ class Mapper {
     try {
       toucher_.check_cancelled();
       toucher_.rise_to(rig_.safe_height_m + detail::kFullStrokeM);
+      if (o_.align_to_normal) {  // the upright coil's floating position: the tilts' reference
+        toucher_.turn_upright();
+        toucher_.compensate_tilt(true);
+      }
       // the next point: row-major, or the planner's from the points measured (as map.json has them)
       auto next = [&]() -> std::optional<analysis::GridCell> {
         if (m.adaptive) return next_adaptive(m, m.adaptive_ended);
@@ -249,8 +261,16 @@ class Mapper {
     toucher_.prepare();
     const double clearance = rig_.safe_height_m + toucher_.floating_stroke_m();
     toucher_.rise_to(clearance);
-    const Pose start = toucher_.tcp_at(plan_.x_m(column - 1), plan_.y_m(row - 1), -clearance);
-    Touch t = toucher_.touch(start, rig_.safe_height_m + rig_.max_approach_m, plan_.approach_speed_m_per_s);
+    // along the work object's z or the surface normal (map_align.hpp)
+    const detail::MapAim aim = aligner_.aim(row, column, clearance);
+    p.aligned_by = aim.aligned_by;
+    p.tilt_rad = aim.tilt_rad;
+    p.tool_axis = aim.tool_axis;
+    Touch t;
+    t.reason = aim.reason;
+    if (aim.ok)
+      t = toucher_.touch(aim.start, rig_.safe_height_m + rig_.max_approach_m,
+                         plan_.approach_speed_m_per_s);
     p.surface = t.at_rest;
     p.surface.row = row;
     p.surface.column = column;
@@ -264,7 +284,10 @@ class Mapper {
     const double floating = toucher_.floating_stroke_m();
     toucher_.release_coil();
     toucher_.wait_device(1.2);  // the coil back on its rear stop and at rest (ring-down)
-    IndentationRun run = indent(probe_, point_settings(), {}, o_.cancelled);
+    // a tilted coil floats and ramps with the current that makes up its weight along the axis
+    p.coil_offset_A = toucher_.current_offset_A();
+    IndentationRun run = indent(
+        probe_, detail::with_current_offset(point_settings(), p.coil_offset_A), {}, o_.cancelled);
     if (run.interrupted) throw Toucher::Cancelled{};
     if (const auto top = ramp_top_of(run)) reached_depth_m_ = top->depth_m;
     p.result_dir = point_dir(row, column);
@@ -280,8 +303,10 @@ class Mapper {
       p.k_fd_reason = run.analysis_reason;
     }
     // dynamic: identify the contact where the ramp ended (identify() floats the coil to the
-    // surface again and holds the bias)
-    if (dynamic_ && !detail::identify_map_point(probe_, *dynamic_, run, dir_, p, o_.cancelled))
+    // surface again and holds the bias; a tilted coil with the ramp's current offset)
+    if (dynamic_ && !detail::identify_map_point(probe_,
+                                                detail::with_current_offset(*dynamic_, p.coil_offset_A),
+                                                run, dir_, p, o_.cancelled))
       throw Toucher::Cancelled{};
     // back off the surface along the tool's -z before anything moves sideways; the next touch
     // floats the coil again
@@ -304,6 +329,7 @@ class Mapper {
   std::filesystem::path dir_;
   const MapOptions& o_;
   Toucher toucher_;
+  detail::MapAligner aligner_;
   std::optional<IdentificationSettings> dynamic_;  ///< the dynamic map's identification
 };
 

@@ -3,9 +3,11 @@
 #include "toucher.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <thread>
 
 #include "experiment_common.hpp"
@@ -24,6 +26,18 @@ constexpr double kSearchSpeed = 10e-3;  // the coarse search, m/s
 constexpr double kBackOff = 0.5e-3;     // from the first touch before the slow approach
 constexpr double kMeasurableM = 4e-6;   // overtravel that tells a contact stiffness
 constexpr double kStaleInputS = 1.0;    // longest the robot's input may lag the contact line
+constexpr double kTurnedRad = 0.1 * std::numbers::pi / 180;  // a turn that re-floats the coil
+constexpr double kCurrentStepA = 1e-3;  // a smaller tilt compensation is left out
+constexpr int kCompensationPasses = 4;  // 25 degrees in palp-sim: 33, 17, 1 mA
+
+std::array<double, 3> tool_z(const Pose& p) {
+  const rb::Rotation r = rb::rotation_from_abc(p.a_rad, p.b_rad, p.c_rad);
+  return {r.m[0][2], r.m[1][2], r.m[2][2]};
+}
+
+double angle(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0));
+}
 
 std::string mm(double m) {
   char b[32];
@@ -44,6 +58,27 @@ Pose pose_of(const rb::Transform& t) {
   p.x_m = t.t[0], p.y_m = t.t[1], p.z_m = t.t[2];
   rb::abc_from_rotation(t.r, p.a_rad, p.b_rad, p.c_rad);
   return p;
+}
+
+Pose orientation_along(const double n[3], double a, double b_near, double c_near) {
+  // v = Rz(-A) n = (sin B cos C, -sin C, cos B cos C)
+  const double v[3] = {std::cos(a) * n[0] + std::sin(a) * n[1],
+                       -std::sin(a) * n[0] + std::cos(a) * n[1], n[2]};
+  const double cos_c = std::sqrt(std::max(0.0, 1.0 - v[1] * v[1]));
+  if (cos_c < 1e-6)
+    throw ConfigError("a tool axis perpendicular to the base's z turned by A has no B (cos C = 0): "
+                      "tilt the work object or the surface less");
+  auto wrapped = [](double d) { return std::remainder(d, 2 * std::numbers::pi); };
+  Pose best;
+  double best_d = INFINITY;
+  for (double sign : {1.0, -1.0}) {
+    const double b = std::atan2(sign * v[0], sign * v[2]);
+    const double c = std::atan2(-v[1], sign * cos_c);
+    const double d = std::hypot(wrapped(b - b_near), wrapped(c - c_near));
+    if (d < best_d) best_d = d, best.b_rad = b, best.c_rad = c;
+  }
+  best.a_rad = a;
+  return best;
 }
 
 struct Toucher::Approach {
@@ -74,15 +109,20 @@ void Toucher::prepare() {
   Params p = probe_.params();
   p.contact_output = proto::ContactOutputMode::active_high;
   probe_.set_params(p);
-  experiment::float_coil(probe_, rig_.watch_current_A, "is watch_current_A above the float current?");
+  experiment::float_coil(probe_, rig_.watch_current_A + offset_A_,
+                         "is watch_current_A above the float current?");
   wait_device(kSettleS);
   floating_stroke_m_ = stroke_now_m();
+  floating_axis_ = tool_z(robot_.pose());
   floating_ = true;
+  if (!upright_stroke_m_ && offset_A_ == 0.0 &&
+      angle(floating_axis_, tool_z(pose_of(wo_))) <= kTurnedRad)
+    upright_stroke_m_ = floating_stroke_m_;
 }
 
 void Toucher::arm() {
   ContactWatchProgram w;
-  w.hold_current_A = static_cast<float>(rig_.watch_current_A);
+  w.hold_current_A = static_cast<float>(rig_.watch_current_A + offset_A_);
   w.threshold_counts = static_cast<std::uint32_t>(std::lround(rig_.contact_threshold_m / kCountM));
   w.timeout_s = 0.0f;
   probe_.load(w);
@@ -164,12 +204,37 @@ Pose Toucher::tcp_at(double x, double y, double z) const {
   return pose_of(t);
 }
 
+Pose Toucher::tcp_along(const double point[3], const double normal[3], double distance) const {
+  const double wo_p[3] = {point[0] - distance * normal[0], point[1] - distance * normal[1],
+                          point[2] - distance * normal[2]};
+  double n[3];
+  rb::rotate(wo_.r, normal, n);
+  const Pose wo = pose_of(wo_);
+  Pose p = orientation_along(n, wo.a_rad, wo.b_rad, wo.c_rad);
+  double t[3];
+  rb::apply(wo_, wo_p, t);
+  p.x_m = t[0], p.y_m = t[1], p.z_m = t[2];
+  return p;
+}
+
+void Toucher::turn_upright() {
+  robot_.set_tool(rig_.tool_id, rig_.tool_tcp);  // the pose is the probe's TCP's
+  Pose p = robot_.pose();
+  const Pose wo = pose_of(wo_);
+  p.a_rad = wo.a_rad, p.b_rad = wo.b_rad, p.c_rad = wo.c_rad;
+  robot_.move_lin(p, rig_.travel_speed_m_per_s);
+}
+
 void Toucher::rise_to(double clearance) {
   const Pose now = robot_.pose();
   const double b[3] = {now.x_m, now.y_m, now.z_m};
   double w[3];
   rb::apply(wo_inv_, b, w);
-  if (w[2] > -clearance) robot_.move_lin(tcp_at(w[0], w[1], -clearance), rig_.travel_speed_m_per_s);
+  if (w[2] > -clearance) {
+    Pose up = tcp_at(w[0], w[1], -clearance);
+    up.a_rad = now.a_rad, up.b_rad = now.b_rad, up.c_rad = now.c_rad;
+    robot_.move_lin(up, rig_.travel_speed_m_per_s);
+  }
 }
 
 void Toucher::make_safe_and_raise() {
@@ -189,6 +254,28 @@ Touch Toucher::touch(const Pose& start, double search_travel, std::optional<doub
   Touch t;
   prepare();
   robot_.move_lin(start, rig_.travel_speed_m_per_s);
+  // a tool turned since the coil was floated floats elsewhere (its weight along the axis is
+  // another): take the floating position again where this approach starts
+  const std::array<double, 3> axis = tool_z(start);
+  if (angle(axis, floating_axis_) > kTurnedRad) {
+    wait_device(kSettleS);
+    floating_stroke_m_ = stroke_now_m();
+    floating_axis_ = axis;
+    // float where the upright coil floats: the current makes up the weight along the axis that
+    // the turn took away or added, k_v (s_upright - s) / K_f; K_f(s) is not flat behind the
+    // float (a coil floated back is pushed harder than that says), so again until it is there
+    for (int pass = 0; compensate_tilt_ && upright_stroke_m_ && pass < kCompensationPasses;
+         ++pass) {
+      const analysis::IndentationParams k;
+      const double more = k.spring_N_per_m * (*upright_stroke_m_ - floating_stroke_m_) /
+                          k.force_constant_N_per_A;
+      if (std::abs(more) <= kCurrentStepA) break;
+      offset_A_ += more;
+      release_coil();
+      wait_device(kSettleS);  // the coil back on its rear stop
+      prepare();
+    }
+  }
   const double pushed = floating_stroke_m_ - stroke_now_m();
   if (std::abs(pushed) >= rig_.contact_threshold_m)
     throw ConfigError("the tip already touches something at the start of the approach (the coil is " +
