@@ -551,7 +551,10 @@ def analyze_map(map: StiffnessMap, contrast: float = 0.1) -> MapAnalysis: ...
 def map_plan(probe: Probe, robot: Robot, rig: Rig, plan: Plan, dir: _Path,
              settings: Optional[IndentationSettings] = None,
              progress: Optional[Callable[[int, int, str], None]] = None,
-             resume: bool = False) -> StiffnessMap: ...
+             resume: bool = False, *, adaptive: bool = False, max_points: int = 0,
+             threshold: float = 0.1, max_force_N: Optional[float] = None,
+             dynamic: bool = False, align: str = "none",
+             trace: Optional[_Path] = None) -> StiffnessMap: ...
 
 # --- surface tracing (palp/trace.hpp) ------------------------------------------------------------
 class TracePoint:

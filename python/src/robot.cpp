@@ -9,6 +9,7 @@
 
 #include "bindings.hpp"
 #include "palp/map.hpp"
+#include "palp/trace.hpp"
 #include "palp/rig.hpp"
 #include "palp/robot.hpp"
 
@@ -19,11 +20,25 @@ namespace {
 palp::StiffnessMap map_plan(palp::Probe& probe, palp::Robot& robot, const palp::Rig& rig,
                             const palp::Plan& plan, const std::filesystem::path& dir,
                             const std::optional<palp::IndentationSettings>& settings,
-                            const py::object& progress, bool resume) {
+                            const py::object& progress, bool resume, bool adaptive, int max_points,
+                            double threshold, std::optional<double> max_force_N, bool dynamic,
+                            const std::string& align, const std::optional<std::filesystem::path>& trace) {
   Interrupt interrupt;
   palp::MapOptions o;
   if (settings) o.settings = *settings;
   o.resume = resume;
+  if (adaptive) {
+    palp::analysis::AdaptiveGridOptions a;
+    a.max_points = max_points;
+    a.threshold = threshold;
+    o.adaptive = a;
+  }
+  o.max_force_N = max_force_N;
+  o.dynamic.enabled = dynamic;
+  if (align != "none" && align != "normal")
+    throw palp::ConfigError("map_plan: align must be \"none\" or \"normal\" (got \"" + align + "\")");
+  o.align_to_normal = align == "normal";
+  if (trace) o.align_trace = palp::load_trace(*trace);
   o.cancelled = interrupt.callback();
   if (!progress.is_none())
     o.progress = [&progress, &interrupt](const palp::MapProgress& p) {
@@ -90,9 +105,15 @@ void bind_robot(py::module_& m) {
 
   m.def("map_plan", &map_plan, py::arg("probe"), py::arg("robot"), py::arg("rig"), py::arg("plan"),
         py::arg("dir"), py::arg("settings") = std::nullopt, py::arg("progress") = py::none(),
-        py::arg("resume") = false,
+        py::arg("resume") = false, py::kw_only(), py::arg("adaptive") = false,
+        py::arg("max_points") = 0, py::arg("threshold") = 0.1, py::arg("max_force_N") = std::nullopt,
+        py::arg("dynamic") = false, py::arg("align") = "none", py::arg("trace") = std::nullopt,
         "Touches and indents every point of the plan into `dir` (palp/map.hpp); progress(done, "
-        "total, phase). Ctrl-C: arm stopped and raised, coil at 0 A, KeyboardInterrupt.");
+        "total, phase). adaptive: only the points the planner chooses (max_points: the budget, 0 "
+        "for half the grid; threshold: neighbours differing by more refine); max_force_N: each "
+        "ramp's top for that object force; dynamic: identify the contact after every ramp; "
+        "align='normal': the tool along the surface normal (from trace, a trace.json, else a "
+        "local trace). Ctrl-C: arm stopped and raised, coil at 0 A, KeyboardInterrupt.");
 }
 
 }  // namespace palp_python

@@ -142,6 +142,12 @@ class SimServer {
   bool ok() const { return port_ != 0; }
   const std::string& banner() const { return banner_; }
   std::string uri() const { return "sim://127.0.0.1:" + std::to_string(port_); }
+  /// The robot bridge's port (started with --robot-port), from the banner's
+  /// ", robot bridge on tcp://127.0.0.1:R"; 0 without one.
+  unsigned robot_port() const {
+    const auto at = banner_.find("robot bridge on tcp://127.0.0.1:");
+    return at == std::string::npos ? 0u : static_cast<unsigned>(std::stoul(banner_.substr(at + 32)));
+  }
 
   /// One line on palp-sim's control channel (its own knobs; not the device socket); the reply.
   /// Waits until palp-sim has seen its device client go (its control "status" says client=0).

@@ -60,7 +60,8 @@ TEST(PalpctlHelp, EveryCommandHasHelpAndEveryDimensionalOptionNamesItsUnit) {
       "--input", "--poisson", "--unbonded", "--preset", "--kf-table", "--format",
       "--plot", "--port", "--bind", "--allow-remote", "--verbose",
       "--adaptive", "--max-points", "--threshold",  // map --adaptive: switch, count, fraction
-      "--align", "--trace"};  // map --align: a choice, a file
+      "--align", "--trace",   // map --align: a choice, a file
+      "--dynamic", "--dynamic-measured-periods"};  // map --dynamic: a switch, a count
   const std::map<Path, std::vector<std::string>> must_list = {
       {{}, {"--uri", "--timeout-s", "--json"}},
       {{"list"}, {}},

@@ -89,16 +89,12 @@ TEST_F(PalpctlExitIndent, OverwriteRefusesADirectoryPalpNeverWroteNamesItAndKeep
 
 // ---- with the robot: map, and the fault latch ----------------------------------------------------
 
-unsigned robot_port(const std::string& banner) {
-  const auto at = banner.find("robot bridge on tcp://127.0.0.1:");
-  return at == std::string::npos ? 0u : static_cast<unsigned>(std::stoul(banner.substr(at + 32)));
-}
 
 class PalpctlExitMap : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
-    const unsigned rp = robot_port(sim_.banner());
+    const unsigned rp = sim_.robot_port();
     ASSERT_NE(rp, 0u) << sim_.banner();
     dir_ = fresh_dir("exit-map");
     // the work object is palp-sim's phantom frame: (600, 0, 300) mm, C = 180 deg

@@ -19,16 +19,12 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-unsigned dynamic_robot_port(const std::string& banner) {
-  const auto at = banner.find("robot bridge on tcp://127.0.0.1:");
-  return at == std::string::npos ? 0u : static_cast<unsigned>(std::stoul(banner.substr(at + 32)));
-}
 
 class PalpctlMapDynamic : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(sim_.ok()) << "palp-sim did not start: " << sim_.banner();
-    const unsigned rp = dynamic_robot_port(sim_.banner());
+    const unsigned rp = sim_.robot_port();
     ASSERT_NE(rp, 0u) << sim_.banner();
     dir_ = fs::temp_directory_path() / ("palpctl-map-dynamic-" + std::to_string(::getpid()));
     fs::remove_all(dir_);

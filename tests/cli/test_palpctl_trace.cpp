@@ -19,11 +19,6 @@ using palpctl::test::palpctl;
 using palpctl::test::SimServer;
 namespace fs = std::filesystem;
 
-unsigned robot_port(const std::string& banner) {
-  const auto at = banner.find("robot bridge on tcp://127.0.0.1:");
-  return at == std::string::npos ? 0u
-                                 : static_cast<unsigned>(std::stoul(banner.substr(at + 32)));
-}
 
 double status_value(const std::string& status, const std::string& key) {
   const auto at = status.find(" " + key + "=");
@@ -38,7 +33,7 @@ nlohmann::json read_json(const fs::path& f) {
 TEST(PalpctlTrace, CtrlCMidPlanExits130AtTheSafeHeightAndResumeFinishesWithoutRepeats) {
   SimServer sim({"--phantom", "pad_2d", "--robot-port", "0"});
   ASSERT_TRUE(sim.ok()) << sim.banner();
-  const unsigned rp = robot_port(sim.banner());
+  const unsigned rp = sim.robot_port();
   ASSERT_NE(rp, 0u) << sim.banner();
   const fs::path dir = fs::temp_directory_path() / ("palpctl_trace_" + std::to_string(::getpid()));
   fs::remove_all(dir);

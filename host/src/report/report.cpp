@@ -184,9 +184,16 @@ Report map_report(const fs::path& dir) {
   rep.header.emplace_back("Plan", m.plan_name.empty() ? "–" : m.plan_name);
   std::size_t indented = 0;
   for (const MapPoint& p : m.points) indented += p.indented ? 1 : 0;
-  rep.header.emplace_back("Grid", std::to_string(m.rows) + " rows × " + std::to_string(m.columns) + " columns, " +
-                                      std::to_string(indented) + " of " + std::to_string(m.points.size()) +
-                                      " points indented");
+  // an adaptive map measures only the points its planner chose: count them against the grid
+  const std::size_t grid_points = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.columns);
+  std::string grid = std::to_string(m.rows) + " rows × " + std::to_string(m.columns) + " columns, " +
+                     std::to_string(indented) + " of " +
+                     std::to_string(m.adaptive ? grid_points : m.points.size()) + " points indented";
+  if (m.adaptive)
+    grid += " (adaptive: " + std::to_string(m.points.size()) + " measured, budget " +
+            std::to_string(m.adaptive->budget(m.rows, m.columns)) +
+            (m.adaptive_ended.empty() ? std::string(")") : "; ended: " + m.adaptive_ended + ")");
+  rep.header.emplace_back("Grid", grid);
   rep.header.emplace_back("State", m.complete ? "complete" : "stopped: " + m.stopped_because);
   rep.header.emplace_back("Settings", detail::indentation_settings_text(indentation_settings_json(m.settings)));
   // the instrument: from the first point's result (every point of a map is measured with it)

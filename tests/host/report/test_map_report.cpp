@@ -14,6 +14,7 @@
 #include <string>
 
 #include "palp/error.hpp"
+#include "palp/map.hpp"
 #include "palp/report.hpp"
 #include "report_fixture.hpp"
 
@@ -113,6 +114,27 @@ TEST_F(MapReport, HeaderNamesTheDeviceAndTheSettings) {
   EXPECT_THAT(text, HasSubstr("Firmware: firmware_version 1.0.0"));
   EXPECT_THAT(text, HasSubstr("Grid: 9 rows × 9 columns, 81 of 81 points indented"));
   EXPECT_THAT(text, HasSubstr("Settings: ramp 0.5 → 3 A by 0.01 A every 25 ms, 3 repetitions"));
+}
+
+TEST_F(MapReport, HeaderOfAnAdaptiveMapCountsItsMeasuredPointsAgainstTheWholeGrid) {
+  // the same map as an adaptive one that measured 30 of its 81 points and spent its budget
+  const fs::path dir = root_ / "adaptive-map";
+  fs::remove_all(dir);
+  fs::copy(root_ / "map", dir, fs::copy_options::recursive);
+  palp::StiffnessMap m = palp::load_map(dir);
+  m.points.resize(30);
+  m.surface.points.resize(30);
+  m.resume_index = m.surface.resume_index = 30;
+  palp::analysis::AdaptiveGridOptions o;
+  o.max_points = 30;
+  m.adaptive = o;
+  m.adaptive_ended = "budget";
+  palp::save_map(dir, m);
+  const Report r = palp::report::make_report(dir);
+  std::string text;
+  for (const auto& [label, value] : r.header) text += label + ": " + value + "\n";
+  EXPECT_THAT(text, HasSubstr("Grid: 9 rows × 9 columns, 30 of 81 points indented (adaptive: 30 "
+                              "measured, budget 30; ended: budget)"));
 }
 
 TEST_F(MapReport, TableMarksTheSoftColumns) {
