@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // palpctl analyze sweep | freeair: frequency responses analysed without a device.
 //   analyze sweep --input FILE    a recording (its sidecar gives the program) or a table
-//                                 (f_Hz,re_m_per_N,im_m_per_N or f_Hz,mag_m_per_N,phase_deg)
+//                                 (f_Hz,re_m_per_N,im_m_per_N or f_Hz,mag_m_per_N,phase_deg), or
+//                                 an .h5 export of either recording or identification result
 //   analyze freeair --omega-n-rad-per-s W --zeta Z --kv-N-per-mm K    m_v and b_v (paper §IV-B)
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -10,6 +12,10 @@
 #include "palp/error.hpp"
 #include "palp/identification_result.hpp"
 #include "palp/recording.hpp"
+#include "export_hdf5.hpp"
+#ifdef PALP_HAVE_HDF5
+#include "palp/hdf5.hpp"
+#endif
 #include "sweep_options.hpp"
 
 namespace palpctl {
@@ -25,17 +31,54 @@ struct AnalyzeSweepCli {
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
 };
 
+bool is_hdf5_input(const std::string& input) {
+#ifdef PALP_HAVE_HDF5
+  return palp::is_hdf5_file(input);
+#else
+  return std::filesystem::path(input).extension() == ".h5";
+#endif
+}
+
+/// The recording --input names: a CSV recording, or an HDF5 file palpctl exported from a
+/// recording or from an identification's result directory (its recording, with the sidecar
+/// that holds the identification's settings).
+palp::Recording recording_of(const std::string& input) {
+#ifdef PALP_HAVE_HDF5
+  if (palp::is_hdf5_file(input)) {
+    const std::string content = palp::hdf5_content(input);
+    if (content == palp::kHdf5ContentRecording) return palp::read_recording_hdf5(input);
+    if (content == palp::kHdf5ContentIdentification || content == palp::kHdf5ContentResult) {
+      palp::LoadedResult r = content == palp::kHdf5ContentIdentification
+                                 ? palp::read_identification_hdf5(input).result
+                                 : palp::read_result_hdf5(input);
+      if (r.experiment != "identification" || r.recordings.empty())
+        throw palp::ConfigError(input + ": a " + r.experiment +
+                                " result, not an identification: analyze it with `palpctl analyze " +
+                                (r.experiment == "indentation" ? "indentation" : "map") + "`");
+      return std::move(r.recordings.front().second);
+    }
+    throw palp::ConfigError(input + ": an HDF5 file of a " + content +
+                            ", not a recording or an identification");
+  }
+#else
+  if (std::filesystem::path(input).extension() == ".h5" && !hdf5_available())
+    throw palp::ConfigError(input + ": this palpctl was built without HDF5 and reads no .h5 (install "
+                                    "libhdf5-dev, scripts/install-deps, and build again)");
+#endif
+  return palp::read_recording(input);
+}
+
 int analyze_sweep(const Context& ctx, const AnalyzeSweepCli& a) {
   SweepCli o = a.sweep;
   an::Frf frf;
   std::optional<an::SecondOrderFit> fit;  // a recording's, fitted with the settings it was run with
   std::optional<double> bias;
   bool free_air = a.free_air;
-  if (an::is_frf_table(o.input)) {
+  if (!is_hdf5_input(o.input) && an::is_frf_table(o.input)) {
     frf = an::read_frf_table(o.input);
     if (a.given("--bias-current-A")) bias = o.bias_A;
   } else {
-    palp::Recording rec = palp::read_recording(o.input);
+    palp::Recording rec = recording_of(o.input);
     palp::IdentificationRun run;
     const bool from_sidecar = rec.sidecar && rec.sidecar->extra.contains("identification");
     if (from_sidecar) {

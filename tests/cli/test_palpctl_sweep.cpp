@@ -202,7 +202,7 @@ class PalpctlFreeAirSim : public PalpctlOnSim {
   PalpctlFreeAirSim() : PalpctlOnSim({}) {}
 };
 
-TEST_F(PalpctlSweepSim, MultisineResultReanalysesTheSameFromItsRecordingAndItsTable) {
+TEST_F(PalpctlSweepSim, MultisineResultReanalysesTheSameFromItsRecordingItsTableAndTheirH5) {
   const std::string out = (dir_ / "solid-p3").string();
   const auto r = run({"--json", "sweep", "--out-dir", out});
   ASSERT_EQ(r.code, 0) << r.err;
@@ -216,8 +216,18 @@ TEST_F(PalpctlSweepSim, MultisineResultReanalysesTheSameFromItsRecordingAndItsTa
   EXPECT_EQ(j["run"]["end"], "completed");
   for (const char* f : {"result.json", "sweep.csv", "sweep.json", "frf.csv"}) EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
 
-  for (const char* input : {"sweep.csv", "frf.csv"}) {
-    const auto a = palpctl({"--json", "analyze", "sweep", "--input", (fs::path(out) / input).string()});
+  std::vector<std::string> inputs = {(fs::path(out) / "sweep.csv").string(),
+                                     (fs::path(out) / "frf.csv").string()};
+#ifdef PALP_HAVE_HDF5
+  // the same run exported as one HDF5 file (an identification) and its recording alone
+  const std::string result_h5 = (dir_ / "solid-p3.h5").string(), rec_h5 = (dir_ / "sweep.h5").string();
+  ASSERT_EQ(palpctl({"export", "--format", "hdf5", "--input", out, "--out", result_h5}).code, 0);
+  ASSERT_EQ(palpctl({"export", "--format", "hdf5", "--input", inputs[0], "--out", rec_h5}).code, 0);
+  inputs.push_back(result_h5);
+  inputs.push_back(rec_h5);
+#endif
+  for (const std::string& input : inputs) {
+    const auto a = palpctl({"--json", "analyze", "sweep", "--input", input});
     ASSERT_EQ(a.code, 0) << input << ": " << a.err;
     const json k = json::parse(a.out);
     EXPECT_NEAR(k["omega_n_rad_per_s"].get<double>(), j["omega_n_rad_per_s"].get<double>(),
