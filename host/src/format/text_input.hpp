@@ -62,12 +62,7 @@ inline std::string escaped(std::string_view text, std::size_t max = kQuoteChars)
 
 /// escaped() in double quotes: how an error message quotes a cell, a key or a line.
 inline std::string quoted(std::string_view text, std::size_t max = kQuoteChars) {
-  // appended, not `"\"" + escaped(...)`: GCC 12 at -O3 (CMake's Release) reports a false
-  // -Wrestrict inside the inlined insert at the front of an rvalue string
-  std::string out(1, '"');
-  out += escaped(text, max);
-  out += '"';
-  return out;
+  return "\"" + escaped(text, max) + "\"";
 }
 
 /// A whole file of at most limit bytes, read without trusting its size (a FIFO or /dev/zero
