@@ -147,6 +147,39 @@ void print_tilt(const palp::StiffnessMap& m) {
               lo * 180 / std::numbers::pi, hi * 180 / std::numbers::pi);
 }
 
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.15g", v);
+  return b;
+}
+
+/// The command that resumes this map: its own options again (a resumed map refuses other
+/// adaptive, dynamic or alignment options, so the hint must carry them), then --resume.
+std::string resume_command(const MapCli& o) {
+  std::string s = "palpctl map --rig " + o.rig + " --plan " + o.plan + " --out-dir " + o.out_dir;
+  if (o.preset != "2d") s += " --preset " + o.preset;
+  if (o.repetitions) s += " --reps " + std::to_string(*o.repetitions);
+  if (o.adaptive) {
+    s += " --adaptive";
+    if (o.max_points != 0) s += " --max-points " + std::to_string(o.max_points);
+    if (o.threshold != 0.1) s += " --threshold " + number(o.threshold);
+  }
+  if (o.max_force_N) s += " --max-force-N " + number(*o.max_force_N);
+  if (o.dynamic.enabled) {
+    s += " --dynamic";
+    if (o.dynamic.amplitude_A) s += " --dynamic-amplitude-A " + number(*o.dynamic.amplitude_A);
+    if (o.dynamic.measured_periods)
+      s += " --dynamic-measured-periods " + std::to_string(*o.dynamic.measured_periods);
+  }
+  if (o.align != "none") {
+    s += " --align " + o.align;
+    if (!o.trace.empty()) s += " --trace " + o.trace;
+    if (o.local_trace_mm != 2.0) s += " --local-trace-mm " + number(o.local_trace_mm);
+    if (o.max_tilt_deg != 30.0) s += " --max-tilt-deg " + number(o.max_tilt_deg);
+  }
+  return s + " --resume";
+}
+
 int map(const Context& ctx, const MapCli& o) {
   const palp::Rig rig = palp::load_rig(o.rig);
   const palp::Plan plan = palp::load_plan(o.plan);
@@ -197,8 +230,7 @@ int map(const Context& ctx, const MapCli& o) {
   if (!m.complete) {
     std::cerr << "palpctl: map stopped (" << m.stopped_because << ") after " << m.resume_index
               << " points; the arm is at the safe height and the coil current is zero.\n"
-              << "resume with: palpctl map --rig " << o.rig << " --plan " << o.plan << " --out-dir " << o.out_dir
-              << " --resume\n";
+              << "resume with: " << resume_command(o) << "\n";
     if (interrupted()) return kInterrupted;
     // the error that stopped it decides the exit code, as it would had it not been caught
     if (m.stopped_error) std::rethrow_exception(m.stopped_error);

@@ -120,7 +120,7 @@ class PalpctlExitMap : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(PalpctlExitMap, WithTheFaultLatchSetRunIndentAndMapEachExit6NamingTheFault) {
+TEST_F(PalpctlExitMap, WithTheFaultLatchSetRunIndentAndMapEachExit6NamingTheFaultAndHowToResume) {
   {  // travel_limit: a 1 mm travel window about the resting coil, then 1 A
     palp::Probe probe(sim_.uri());
     auto p = probe.params();
@@ -144,6 +144,17 @@ TEST_F(PalpctlExitMap, WithTheFaultLatchSetRunIndentAndMapEachExit6NamingTheFaul
   const auto m = run(map_args(dir_ / "m"));
   EXPECT_EQ(m.code, 6) << m.err;
   EXPECT_NE(m.err.find("travel_limit"), std::string::npos) << m.err;
+  // the hint to resume carries the options a resumed map insists on
+  std::vector<std::string> args = map_args(dir_ / "a");
+  for (const char* extra : {"--adaptive", "--max-points", "3", "--max-force-N", "3.5"})
+    args.push_back(extra);
+  const auto a = run(args);
+  EXPECT_EQ(a.code, 6) << a.err;
+  EXPECT_NE(a.err.find("resume with: palpctl map --rig " + (dir_ / "rig.json").string() + " --plan " +
+                       (dir_ / "plan.json").string() + " --out-dir " + (dir_ / "a").string() +
+                       " --reps 1 --adaptive --max-points 3 --max-force-N 3.5 --resume\n"),
+            std::string::npos)
+      << a.err;
 }
 
 TEST_F(PalpctlExitMap, MapRefusesAPointDirectoryPalpDidNotWriteNamesItAndKeepsIt) {
